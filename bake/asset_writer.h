@@ -1,0 +1,19 @@
+// Serialises a baked scene into the .stip format (runtime/asset_format.h, docs/format.md).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "bake/point_hierarchy.h"
+#include "bake/raw_scene.h"
+
+namespace stipple::bake {
+
+// Builds the whole file in memory (byte-identical for identical inputs).
+std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points);
+
+// Writes to `path` through a temporary file and a rename, so a failed bake never leaves a
+// partial asset behind.
+bool write_asset(const std::string& path, const std::vector<uint8_t>& bytes, std::string* error);
+
+}  // namespace stipple::bake

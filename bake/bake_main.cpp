@@ -1,0 +1,142 @@
+// stipple-bake: glTF / OBJ / PLY / STL -> .stip asset (mesh, skin, clips, point hierarchy).
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "bake/asset_writer.h"
+#include "bake/point_hierarchy.h"
+#include "bake/scene_import.h"
+
+namespace {
+
+const char* kUsage =
+    "usage: stipple-bake INPUT -o OUT.stip [options]\n"
+    "  INPUT            glTF 2.0 (.gltf/.glb), or a static .obj/.ply/.stl mesh\n"
+    "  -o, --output F   asset to write\n"
+    "  --points N       points in the hierarchy (default 20000, max 20000000)\n"
+    "  --seed S         random seed (default 1); same input+options+seed = same bytes\n"
+    "  --quiet          no progress or summary\n"
+    "  -h, --help       this text\n";
+
+struct Options {
+    std::string input, output;
+    long points = 20000;
+    unsigned long long seed = 1;
+    bool quiet = false;
+};
+
+[[noreturn]] void die(const std::string& message) {
+    std::fprintf(stderr, "stipple-bake: %s\n", message.c_str());
+    std::exit(1);
+}
+
+bool parse_long(const char* s, long lo, long hi, long* out) {
+    char* end = nullptr;
+    long v = std::strtol(s, &end, 10);
+    if (end == s || *end != '\0' || v < lo || v > hi) return false;
+    *out = v;
+    return true;
+}
+
+Options parse(int argc, char** argv) {
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        auto value = [&]() -> const char* {
+            if (i + 1 >= argc) die("option " + a + " needs a value");
+            return argv[++i];
+        };
+        if (a == "-h" || a == "--help") {
+            std::fputs(kUsage, stdout);
+            std::exit(0);
+        } else if (a == "-o" || a == "--output") {
+            o.output = value();
+        } else if (a == "--points") {
+            if (!parse_long(value(), 1, 20000000, &o.points))
+                die("--points must be an integer in [1, 20000000]");
+        } else if (a == "--seed") {
+            const char* s = value();
+            char* end = nullptr;
+            o.seed = std::strtoull(s, &end, 10);
+            if (end == s || *end != '\0') die("--seed must be a non-negative integer");
+        } else if (a == "--quiet") {
+            o.quiet = true;
+        } else if (!a.empty() && a[0] == '-') {
+            die("unknown option '" + a + "' (see --help)");
+        } else if (o.input.empty()) {
+            o.input = a;
+        } else {
+            die("more than one input given ('" + o.input + "', '" + a + "')");
+        }
+    }
+    if (o.input.empty()) die("no input file (see --help)");
+    if (o.output.empty()) die("no output file: pass -o OUT.stip");
+    return o;
+}
+
+struct Progress {
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+    bool quiet = false;
+    int last = -1;
+};
+
+void on_progress(float fraction, void* user) {
+    Progress* p = static_cast<Progress*>(user);
+    double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - p->start).count();
+    int percent = int(fraction * 100);
+    if (p->quiet || percent == p->last || seconds < 1.0) return;
+    p->last = percent;
+    std::fprintf(stderr, "\rbuilding point hierarchy %3d%%", percent);
+    if (percent == 100) std::fputc('\n', stderr);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    using namespace stipple::bake;
+    const uint16_t probe = 1;
+    if (*reinterpret_cast<const uint8_t*>(&probe) != 1) die("big-endian hosts are not supported");
+    Options o = parse(argc, argv);
+    auto t0 = std::chrono::steady_clock::now();
+
+    RawScene scene;
+    std::string error;
+    if (!import_scene(o.input, &scene, &error)) die(error);
+    if (!o.quiet)
+        for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+
+    Progress progress;
+    progress.quiet = o.quiet;
+    HierarchyConfig config;
+    config.point_count = uint32_t(o.points);
+    config.seed = o.seed;
+    config.progress = on_progress;
+    config.progress_user = &progress;
+    PointHierarchy points;
+    HierarchyStats stats;
+    if (!build_point_hierarchy(scene, config, &points, &stats, &error))
+        die(o.input + ": " + error);
+    if (points.size() < size_t(o.points) && !o.quiet)
+        std::fprintf(stderr, "warning: only %zu points could be built\n", points.size());
+
+    std::vector<uint8_t> bytes = encode_asset(scene, points);
+    if (!write_asset(o.output, bytes, &error)) die(error);
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!o.quiet) {
+        size_t point_bytes = points.size() * 16 + points.neighbour_offsets.size() * 4 +
+                             points.neighbours.size() * 4;
+        std::printf(
+            "{\"input\": \"%s\", \"output\": \"%s\", \"vertices\": %zu, \"triangles\": %zu, "
+            "\"joints\": %zu, \"clips\": %zu, \"points\": %zu, \"input_points\": %u, "
+            "\"subdivided_points\": %u, \"neighbours_per_point\": %.2f, \"bytes\": %zu, "
+            "\"bytes_per_point\": %.2f, \"seconds\": %.3f}\n",
+            o.input.c_str(), o.output.c_str(), scene.vertex_count(), scene.triangle_count(),
+            scene.joint_nodes.size(), scene.clips.size(), points.size(), stats.simplified_points,
+            stats.subdivided_points, double(points.neighbours.size()) / double(points.size()),
+            bytes.size(), double(point_bytes) / double(points.size()), seconds);
+    }
+    return 0;
+}

@@ -1,0 +1,338 @@
+#include "runtime/asset.h"
+
+#include <cmath>
+#include <cstdarg>
+#include <cstdlib>
+#include <cstdio>
+#include <cstring>
+#include <new>
+
+#include "runtime/asset_format.h"
+
+namespace stipple {
+
+namespace {
+
+LoadStatus fail(LoadError error, const char* fmt, ...) {
+    LoadStatus s;
+    s.error = error;
+    va_list args;
+    va_start(args, fmt);
+    std::vsnprintf(s.message, sizeof(s.message), fmt, args);
+    va_end(args);
+    return s;
+}
+
+// Bounds-checked cursor over one section. Every take() checks the remaining size first,
+// so a lying count can only produce an error, never an out-of-bounds view.
+struct Reader {
+    const uint8_t* data;
+    size_t size;
+    size_t at = 0;
+    bool ok = true;
+
+    template <typename T>
+    const T* take(size_t count) {
+        size_t align = alignof(T);
+        size_t start = (at + align - 1) / align * align;
+        if (!ok || count > (size - start) / sizeof(T) || start > size) {
+            ok = false;
+            return nullptr;
+        }
+        at = start + count * sizeof(T);
+        return reinterpret_cast<const T*>(data + start);
+    }
+    uint32_t u32() {
+        const uint32_t* p = take<uint32_t>(1);
+        return p ? *p : 0;
+    }
+};
+
+bool all_finite(const float* v, size_t n) {
+    for (size_t i = 0; i < n; ++i)
+        if (!std::isfinite(v[i])) return false;
+    return true;
+}
+
+LoadStatus parse_mesh(Reader r, MeshView* m) {
+    m->vertex_count = r.u32();
+    m->triangle_count = r.u32();
+    m->positions = r.take<float>(size_t(m->vertex_count) * 3);
+    m->normals = r.take<float>(size_t(m->vertex_count) * 3);
+    m->indices = r.take<uint32_t>(size_t(m->triangle_count) * 3);
+    if (!r.ok || r.at != r.size)
+        return fail(LoadError::malformed_section, "MESH: size does not match %u vertices, %u triangles",
+                    m->vertex_count, m->triangle_count);
+    if (m->vertex_count == 0 || m->triangle_count == 0)
+        return fail(LoadError::malformed_section, "MESH: empty mesh");
+    for (size_t i = 0; i < size_t(m->triangle_count) * 3; ++i)
+        if (m->indices[i] >= m->vertex_count)
+            return fail(LoadError::out_of_range, "MESH: index %u at %zu >= vertex count %u",
+                        m->indices[i], i, m->vertex_count);
+    if (!all_finite(m->positions, size_t(m->vertex_count) * 3) ||
+        !all_finite(m->normals, size_t(m->vertex_count) * 3))
+        return fail(LoadError::bad_value, "MESH: non-finite position or normal");
+    return {};
+}
+
+LoadStatus parse_skin(Reader r, uint32_t vertex_count, SkinView* s) {
+    anim::Skeleton& k = s->skeleton;
+    k.node_count = r.u32();
+    k.joint_count = r.u32();
+    k.parents = r.take<int32_t>(k.node_count);
+    k.rest = r.take<anim::Trs>(k.node_count);
+    k.joint_nodes = r.take<uint32_t>(k.joint_count);
+    k.inverse_bind = r.take<float>(size_t(k.joint_count) * 16);
+    s->joints = r.take<uint16_t>(size_t(vertex_count) * 4);
+    s->weights = r.take<float>(size_t(vertex_count) * 4);
+    if (!r.ok || r.at != r.size)
+        return fail(LoadError::malformed_section, "SKIN: size does not match %u nodes, %u joints",
+                    k.node_count, k.joint_count);
+    if (k.joint_count == 0 || k.joint_count > 65535)
+        return fail(LoadError::malformed_section, "SKIN: joint count %u not in [1, 65535]",
+                    k.joint_count);
+    for (uint32_t i = 0; i < k.node_count; ++i)
+        if (k.parents[i] < -1 || k.parents[i] >= int32_t(i))
+            return fail(LoadError::out_of_range, "SKIN: node %u has parent %d (must be < %u)", i,
+                        k.parents[i], i);
+    for (uint32_t j = 0; j < k.joint_count; ++j)
+        if (k.joint_nodes[j] >= k.node_count)
+            return fail(LoadError::out_of_range, "SKIN: joint %u node %u >= node count %u", j,
+                        k.joint_nodes[j], k.node_count);
+    for (size_t i = 0; i < size_t(vertex_count) * 4; ++i)
+        if (s->joints[i] >= k.joint_count)
+            return fail(LoadError::out_of_range, "SKIN: vertex %zu joint %u >= joint count %u",
+                        i / 4, s->joints[i], k.joint_count);
+    if (!all_finite(&k.rest[0].translation[0], size_t(k.node_count) * 10) ||
+        !all_finite(k.inverse_bind, size_t(k.joint_count) * 16) ||
+        !all_finite(s->weights, size_t(vertex_count) * 4))
+        return fail(LoadError::bad_value, "SKIN: non-finite transform or weight");
+    return {};
+}
+
+LoadStatus parse_clips(Reader r, uint32_t node_count, Asset* a) {
+    uint32_t clip_count = r.u32(), channel_count = r.u32();
+    uint32_t float_count = r.u32(), name_bytes = r.u32();
+    const format::ClipRecord* clips = r.take<format::ClipRecord>(clip_count);
+    const format::ChannelRecord* channels = r.take<format::ChannelRecord>(channel_count);
+    const float* pool = r.take<float>(float_count);
+    const char* names = r.take<char>(name_bytes);
+    if (!r.ok || r.at != r.size)
+        return fail(LoadError::malformed_section, "CLIP: size does not match %u clips, %u channels",
+                    clip_count, channel_count);
+    if (name_bytes == 0 || names[name_bytes - 1] != '\0')
+        return fail(LoadError::malformed_section, "CLIP: name pool not NUL-terminated");
+    if (!all_finite(pool, float_count)) return fail(LoadError::bad_value, "CLIP: non-finite key");
+
+    a->channel_storage.reset(new (std::nothrow) anim::Channel[channel_count + 1]);
+    a->clip_storage.reset(new (std::nothrow) anim::Clip[clip_count + 1]);
+    if (!a->channel_storage || !a->clip_storage)
+        return fail(LoadError::malformed_section, "CLIP: out of memory");
+    for (uint32_t i = 0; i < channel_count; ++i) {
+        const format::ChannelRecord& c = channels[i];
+        size_t width = c.path == 1 ? 4 : 3;
+        if (c.node >= node_count || c.path > 2 || c.interp > 1 || c.key_count == 0)
+            return fail(LoadError::out_of_range, "CLIP: channel %u has node %u path %u interp %u keys %u",
+                        i, c.node, c.path, c.interp, c.key_count);
+        if (c.times_offset > float_count || c.key_count > float_count - c.times_offset ||
+            c.values_offset > float_count || c.key_count * width > float_count - c.values_offset)
+            return fail(LoadError::out_of_range, "CLIP: channel %u keys outside the float pool", i);
+        const float* t = pool + c.times_offset;
+        for (uint32_t k = 1; k < c.key_count; ++k)
+            if (!(t[k] > t[k - 1]))
+                return fail(LoadError::bad_value, "CLIP: channel %u key times not increasing", i);
+        a->channel_storage[i] = {c.node, anim::Path(c.path), anim::Interp(c.interp), c.key_count, t,
+                                 pool + c.values_offset};
+    }
+    for (uint32_t i = 0; i < clip_count; ++i) {
+        const format::ClipRecord& c = clips[i];
+        if (c.name_offset >= name_bytes || c.channel_begin > channel_count ||
+            c.channel_count > channel_count - c.channel_begin)
+            return fail(LoadError::out_of_range, "CLIP: clip %u name or channels out of range", i);
+        if (!std::isfinite(c.duration) || c.duration < 0)
+            return fail(LoadError::bad_value, "CLIP: clip %u duration %g", i, double(c.duration));
+        a->clip_storage[i] = {names + c.name_offset, c.duration, c.channel_count,
+                              a->channel_storage.get() + c.channel_begin};
+    }
+    a->clip_count = clip_count;
+    a->clips = a->clip_storage.get();
+    return {};
+}
+
+LoadStatus parse_points(Reader r, uint32_t triangle_count, PointsView* p) {
+    p->point_count = r.u32();
+    p->host_triangle = r.take<uint32_t>(p->point_count);
+    p->bary_u = r.take<float>(p->point_count);
+    p->bary_v = r.take<float>(p->point_count);
+    p->radius = r.take<float>(p->point_count);
+    if (!r.ok || r.at != r.size)
+        return fail(LoadError::malformed_section, "PNTS: size does not match %u points",
+                    p->point_count);
+    const float eps = 1e-5f;
+    for (uint32_t i = 0; i < p->point_count; ++i) {
+        if (p->host_triangle[i] >= triangle_count)
+            return fail(LoadError::out_of_range, "PNTS: point %u host triangle %u >= %u", i,
+                        p->host_triangle[i], triangle_count);
+        float u = p->bary_u[i], v = p->bary_v[i];
+        if (!(u >= -eps && v >= -eps && u + v <= 1 + eps))
+            return fail(LoadError::bad_value, "PNTS: point %u barycentrics (%g, %g) invalid", i,
+                        double(u), double(v));
+        if (!(p->radius[i] >= 0 && std::isfinite(p->radius[i])))
+            return fail(LoadError::bad_value, "PNTS: point %u radius %g", i, double(p->radius[i]));
+    }
+    return {};
+}
+
+LoadStatus parse_neighbours(Reader r, PointsView* p) {
+    uint32_t point_count = r.u32();
+    p->neighbour_count = r.u32();
+    p->neighbour_offsets = r.take<uint32_t>(size_t(point_count) + 1);
+    p->neighbours = r.take<uint32_t>(p->neighbour_count);
+    if (!r.ok || r.at != r.size)
+        return fail(LoadError::malformed_section, "NBRS: size does not match %u neighbours",
+                    p->neighbour_count);
+    if (point_count != p->point_count)
+        return fail(LoadError::malformed_section, "NBRS: %u points but PNTS has %u", point_count,
+                    p->point_count);
+    if (p->neighbour_offsets[0] != 0 || p->neighbour_offsets[point_count] != p->neighbour_count)
+        return fail(LoadError::malformed_section, "NBRS: offsets do not span the neighbour list");
+    for (uint32_t i = 0; i < point_count; ++i)
+        if (p->neighbour_offsets[i + 1] < p->neighbour_offsets[i])
+            return fail(LoadError::malformed_section, "NBRS: offsets decrease at point %u", i);
+    for (uint32_t i = 0; i < p->neighbour_count; ++i)
+        if (p->neighbours[i] >= point_count)
+            return fail(LoadError::out_of_range, "NBRS: neighbour %u >= point count %u",
+                        p->neighbours[i], point_count);
+    return {};
+}
+
+const format::SectionEntry* find_section(const format::SectionEntry* table, uint32_t count,
+                                         uint32_t tag) {
+    for (uint32_t i = 0; i < count; ++i)
+        if (table[i].tag == tag) return &table[i];
+    return nullptr;
+}
+
+LoadStatus parse(const uint8_t* bytes, size_t size, Asset* a) {
+    if (size < sizeof(format::FileHeader) || std::memcmp(bytes, format::kMagic, 4) != 0)
+        return fail(LoadError::bad_magic, "not a .stip asset (bad magic)");
+    format::FileHeader h;
+    std::memcpy(&h, bytes, sizeof(h));
+    if (h.endian_tag != format::kEndianTag)
+        return fail(LoadError::wrong_endianness, "asset byte order does not match this machine");
+    if (h.version != format::kVersion)
+        return fail(LoadError::unsupported_version, "asset format version %u, this runtime reads %u",
+                    h.version, format::kVersion);
+    if (h.file_size != size)
+        return fail(LoadError::truncated, "asset is %zu bytes but its header says %llu", size,
+                    static_cast<unsigned long long>(h.file_size));
+    if (h.section_count > 64 ||
+        sizeof(format::FileHeader) + h.section_count * sizeof(format::SectionEntry) > size)
+        return fail(LoadError::truncated, "section table (%u entries) does not fit the file",
+                    h.section_count);
+    const auto* table = reinterpret_cast<const format::SectionEntry*>(bytes + sizeof(h));
+    if (format::crc32(table, h.section_count * sizeof(format::SectionEntry)) != h.table_crc)
+        return fail(LoadError::checksum_mismatch, "section table checksum mismatch");
+    for (uint32_t i = 0; i < h.section_count; ++i) {
+        const format::SectionEntry& s = table[i];
+        char tag[5] = {char(s.tag), char(s.tag >> 8), char(s.tag >> 16), char(s.tag >> 24), 0};
+        if (s.offset % format::kSectionAlign != 0 || s.offset > size || s.size > size - s.offset)
+            return fail(LoadError::truncated, "%s: section [%llu, +%llu) outside the %zu-byte file",
+                        tag, static_cast<unsigned long long>(s.offset),
+                        static_cast<unsigned long long>(s.size), size);
+        if (format::crc32(bytes + s.offset, s.size) != s.crc)
+            return fail(LoadError::checksum_mismatch, "%s: checksum mismatch (corrupted asset)", tag);
+    }
+    const uint32_t tags[5] = {format::kTagMesh, format::kTagSkin, format::kTagClips,
+                              format::kTagPoints, format::kTagNeighbours};
+    const format::SectionEntry* sec[5];
+    for (int i = 0; i < 5; ++i) {
+        sec[i] = find_section(table, h.section_count, tags[i]);
+        a->section_size[i] = sec[i] ? sec[i]->size : 0;
+    }
+    if (!sec[0] || !sec[3] || !sec[4])
+        return fail(LoadError::missing_section, "asset lacks a %s section",
+                    !sec[0] ? "MESH" : !sec[3] ? "PNTS" : "NBRS");
+    if (sec[2] && !sec[1]) return fail(LoadError::missing_section, "CLIP section without SKIN");
+    auto reader = [&](const format::SectionEntry* s) {
+        return Reader{bytes + s->offset, size_t(s->size)};
+    };
+    LoadStatus st = parse_mesh(reader(sec[0]), &a->mesh);
+    if (st.ok() && sec[1]) {
+        a->skinned = true;
+        st = parse_skin(reader(sec[1]), a->mesh.vertex_count, &a->skin);
+    }
+    if (st.ok() && sec[2]) st = parse_clips(reader(sec[2]), a->skin.skeleton.node_count, a);
+    if (st.ok()) st = parse_points(reader(sec[3]), a->mesh.triangle_count, &a->points);
+    if (st.ok()) st = parse_neighbours(reader(sec[4]), &a->points);
+    return st;
+}
+
+}  // namespace
+
+LoadStatus load_asset_memory(const void* data, size_t size, Asset* out) {
+    *out = Asset();
+    // 16-byte aligned copy so every typed view is aligned.
+    out->storage.reset(new (std::nothrow) uint8_t[size + 16]);
+    if (!out->storage) return fail(LoadError::io_error, "out of memory for a %zu-byte asset", size);
+    std::memcpy(out->storage.get(), data, size);
+    out->file_size = size;
+    LoadStatus st = parse(out->storage.get(), size, out);
+    if (!st.ok()) *out = Asset();
+    return st;
+}
+
+LoadStatus load_asset_file(const char* path, Asset* out) {
+    *out = Asset();
+    FILE* f = std::fopen(path, "rb");
+    if (!f) return fail(LoadError::io_error, "cannot open '%s'", path);
+    std::fseek(f, 0, SEEK_END);
+    long len = std::ftell(f);
+    std::fseek(f, 0, SEEK_SET);
+    if (len < 0) {
+        std::fclose(f);
+        return fail(LoadError::io_error, "cannot read '%s'", path);
+    }
+    size_t size = size_t(len);
+    out->storage.reset(new (std::nothrow) uint8_t[size + 16]);
+    if (!out->storage) {
+        std::fclose(f);
+        return fail(LoadError::io_error, "out of memory for '%s' (%zu bytes)", path, size);
+    }
+    size_t got = std::fread(out->storage.get(), 1, size, f);
+    std::fclose(f);
+    if (got != size) return fail(LoadError::io_error, "short read on '%s'", path);
+    out->file_size = size;
+    LoadStatus st = parse(out->storage.get(), size, out);
+    if (!st.ok()) *out = Asset();
+    return st;
+}
+
+int find_clip(const Asset& asset, const char* name) {
+    for (uint32_t i = 0; i < asset.clip_count; ++i)
+        if (std::strcmp(asset.clips[i].name, name) == 0) return int(i);
+    char* end = nullptr;
+    long index = std::strtol(name, &end, 10);
+    if (end != name && *end == '\0' && index >= 0 && index < long(asset.clip_count))
+        return int(index);
+    return -1;
+}
+
+const char* load_error_name(LoadError error) {
+    switch (error) {
+        case LoadError::ok: return "ok";
+        case LoadError::io_error: return "io_error";
+        case LoadError::bad_magic: return "bad_magic";
+        case LoadError::unsupported_version: return "unsupported_version";
+        case LoadError::wrong_endianness: return "wrong_endianness";
+        case LoadError::truncated: return "truncated";
+        case LoadError::checksum_mismatch: return "checksum_mismatch";
+        case LoadError::missing_section: return "missing_section";
+        case LoadError::malformed_section: return "malformed_section";
+        case LoadError::out_of_range: return "out_of_range";
+        case LoadError::bad_value: return "bad_value";
+    }
+    return "unknown";
+}
+
+}  // namespace stipple

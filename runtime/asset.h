@@ -1,0 +1,87 @@
+// Loading a .stip asset: the file is read into one allocation at load time, every byte is
+// validated (sizes, checksums, index ranges, finite values), and the runtime then works on
+// typed views into that block. After load_asset() succeeds, nothing the file says can make
+// the runtime read or write outside its buffers.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+
+#include "anim/anim.h"
+
+namespace stipple {
+
+enum class LoadError {
+    ok = 0,
+    io_error,             // file missing or unreadable
+    bad_magic,            // not a .stip file
+    unsupported_version,  // written by a newer or older format
+    wrong_endianness,
+    truncated,            // file shorter than its header or a section says
+    checksum_mismatch,    // a section's bytes do not match its CRC
+    missing_section,
+    malformed_section,    // sizes inside a section disagree
+    out_of_range,         // an index points outside its array
+    bad_value,            // NaN, infinity, or a value outside its domain
+};
+
+struct LoadStatus {
+    LoadError error = LoadError::ok;
+    char message[200] = {};  // one line naming the problem, e.g. "PNTS: host triangle 9 >= 8"
+    bool ok() const { return error == LoadError::ok; }
+};
+
+// Runtime mesh: positions and normals in bind space (animated) or world space (static).
+struct MeshView {
+    uint32_t vertex_count = 0;
+    uint32_t triangle_count = 0;
+    const float* positions = nullptr;  // 3 per vertex
+    const float* normals = nullptr;    // 3 per vertex
+    const uint32_t* indices = nullptr; // 3 per triangle, each < vertex_count
+};
+
+// Point hierarchy (thesis §4.5), structure of arrays, ordered coarse to fine.
+struct PointsView {
+    uint32_t point_count = 0;
+    const uint32_t* host_triangle = nullptr;  // < triangle_count
+    const float* bary_u = nullptr;            // weight of the host triangle's first vertex
+    const float* bary_v = nullptr;            // weight of its second; third is 1 - u - v
+    const float* radius = nullptr;            // relevance radius at bake time (object space)
+    const uint32_t* neighbour_offsets = nullptr;  // point_count + 1, non-decreasing
+    const uint32_t* neighbours = nullptr;         // relevant neighbours, each < point_count
+    uint32_t neighbour_count = 0;
+};
+
+struct SkinView {
+    anim::Skeleton skeleton = {};
+    const uint16_t* joints = nullptr;  // 4 per vertex, each < joint_count
+    const float* weights = nullptr;    // 4 per vertex
+};
+
+struct Asset {
+    MeshView mesh;
+    PointsView points;
+    bool skinned = false;
+    SkinView skin;
+    uint32_t clip_count = 0;
+    const anim::Clip* clips = nullptr;
+    size_t file_size = 0;
+    size_t section_size[5] = {};  // MESH, SKIN, CLIP, PNTS, NBRS bytes (0 if absent)
+
+    // Owned storage: the file bytes and the clip/channel tables built from them.
+    std::unique_ptr<uint8_t[]> storage;
+    std::unique_ptr<anim::Channel[]> channel_storage;
+    std::unique_ptr<anim::Clip[]> clip_storage;
+};
+
+// Reads and validates a whole asset. On failure `out` is left empty.
+LoadStatus load_asset_file(const char* path, Asset* out);
+// Validates `size` bytes already in memory; copies them into out->storage.
+LoadStatus load_asset_memory(const void* data, size_t size, Asset* out);
+
+// Index of the clip named `name`, or of clip number `name` if it is all digits; -1 if none.
+int find_clip(const Asset& asset, const char* name);
+
+const char* load_error_name(LoadError error);
+
+}  // namespace stipple

@@ -1,0 +1,64 @@
+// One frame of animated stippling as a pipeline of plain stages over flat arrays
+// (thesis Alg. 6.4 wrapped around Alg. 3.2):
+//   sample clip -> skin mesh -> place points -> recompute relevance -> size -> draw.
+// Every buffer is allocated in pipeline_init from the asset's counts; a frame allocates
+// nothing.
+#pragma once
+#include <cstdint>
+#include <memory>
+
+#include <glm/glm.hpp>
+
+#include "runtime/asset.h"
+#include "runtime/renderer.h"
+#include "runtime/stipple_size.h"
+
+namespace stipple {
+
+struct PipelineConfig {
+    int width = 640;
+    int height = 480;
+    float zoom = 1.0f;          // 1: the rest-pose bounds fit the view; 2: twice as large
+    float yaw_degrees = 0.0f;   // camera orbit around the vertical axis
+    float pitch_degrees = 0.0f; // camera elevation
+    float fov_degrees = 30.0f;  // vertical field of view at zoom 1
+    bool relevance_update = true;  // Alg. 6.4; false keeps rest-pose radii (Alg. 6.3 only)
+    float constant_tone = -1.0f;   // in [0,1] to replace lighting
+    float max_point_size = 3.0f;
+    float smooth_slope = 2.0f;
+    float background[3] = {1.0f, 1.0f, 1.0f};
+};
+
+struct StageTimes {  // milliseconds
+    double sample = 0, skin = 0, place = 0, relevance = 0, size = 0, draw = 0, readback = 0;
+};
+
+struct Pipeline {
+    const Asset* asset = nullptr;
+    PipelineConfig config;
+    glm::mat4 view_projection = glm::mat4(1.0f);
+    SizeParams size_params;
+    Renderer renderer;
+
+    std::unique_ptr<anim::Trs[]> locals;       // node_count
+    std::unique_ptr<glm::mat4[]> models;       // node_count
+    std::unique_ptr<glm::mat4[]> skin_matrices; // joint_count
+    std::unique_ptr<float[]> vertex_positions, vertex_normals;  // 3 * vertex_count
+    std::unique_ptr<float[]> point_positions, point_normals;    // 3 * point_count
+    std::unique_ptr<float[]> rest_radius, radius, size;         // point_count
+    uint32_t points_drawn = 0;                                  // size > 0 in the last frame
+};
+
+bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const PipelineConfig& config,
+                   char* error, size_t error_size);
+
+// Poses the mesh at `time` seconds of clip `clip` (-1: rest pose), then runs every CPU
+// stage and draws. Stage times are added to `times` if it is not null.
+void pipeline_frame(Pipeline* p, int clip, float time, StageTimes* times);
+
+// Projects point i of the last frame to pixels (origin top-left) and window depth.
+glm::vec3 pipeline_project(const Pipeline& p, uint32_t i);
+
+void pipeline_destroy(Pipeline* p);
+
+}  // namespace stipple

@@ -1,0 +1,78 @@
+// The OpenGL ES 3.0 entry points the renderer uses, loaded through the caller's
+// get-proc-address. Going through a table (instead of linking libGLESv2) lets the same
+// renderer run on an EGL context, an OSMesa desktop-GL context, or an integrator's own.
+#pragma once
+#include <GLES3/gl3.h>
+
+namespace stipple {
+
+#define STIPPLE_GL_FUNCTIONS(X)                                                              \
+    X(PFNGLGETSTRINGPROC, GetString)                                                         \
+    X(PFNGLGETERRORPROC, GetError)                                                           \
+    X(PFNGLVIEWPORTPROC, Viewport)                                                           \
+    X(PFNGLCLEARCOLORPROC, ClearColor)                                                       \
+    X(PFNGLCLEARPROC, Clear)                                                                 \
+    X(PFNGLCLEARBUFFERFVPROC, ClearBufferfv)                                                 \
+    X(PFNGLENABLEPROC, Enable)                                                               \
+    X(PFNGLDISABLEPROC, Disable)                                                             \
+    X(PFNGLDEPTHFUNCPROC, DepthFunc)                                                         \
+    X(PFNGLDEPTHMASKPROC, DepthMask)                                                         \
+    X(PFNGLBLENDFUNCPROC, BlendFunc)                                                         \
+    X(PFNGLCREATESHADERPROC, CreateShader)                                                   \
+    X(PFNGLSHADERSOURCEPROC, ShaderSource)                                                   \
+    X(PFNGLCOMPILESHADERPROC, CompileShader)                                                 \
+    X(PFNGLGETSHADERIVPROC, GetShaderiv)                                                     \
+    X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)                                           \
+    X(PFNGLDELETESHADERPROC, DeleteShader)                                                   \
+    X(PFNGLCREATEPROGRAMPROC, CreateProgram)                                                 \
+    X(PFNGLATTACHSHADERPROC, AttachShader)                                                   \
+    X(PFNGLBINDATTRIBLOCATIONPROC, BindAttribLocation)                                       \
+    X(PFNGLLINKPROGRAMPROC, LinkProgram)                                                     \
+    X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                                                   \
+    X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                                         \
+    X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                                                 \
+    X(PFNGLUSEPROGRAMPROC, UseProgram)                                                       \
+    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                                       \
+    X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                                           \
+    X(PFNGLUNIFORM1FPROC, Uniform1f)                                                         \
+    X(PFNGLUNIFORM4FPROC, Uniform4f)                                                         \
+    X(PFNGLGENBUFFERSPROC, GenBuffers)                                                       \
+    X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                                                 \
+    X(PFNGLBINDBUFFERPROC, BindBuffer)                                                       \
+    X(PFNGLBUFFERDATAPROC, BufferData)                                                       \
+    X(PFNGLBUFFERSUBDATAPROC, BufferSubData)                                                 \
+    X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                                             \
+    X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                                       \
+    X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                                             \
+    X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)                             \
+    X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)                                     \
+    X(PFNGLDRAWELEMENTSPROC, DrawElements)                                                   \
+    X(PFNGLDRAWARRAYSPROC, DrawArrays)                                                       \
+    X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                                             \
+    X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                                       \
+    X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                                             \
+    X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, FramebufferRenderbuffer)                             \
+    X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)                               \
+    X(PFNGLGENRENDERBUFFERSPROC, GenRenderbuffers)                                           \
+    X(PFNGLDELETERENDERBUFFERSPROC, DeleteRenderbuffers)                                     \
+    X(PFNGLBINDRENDERBUFFERPROC, BindRenderbuffer)                                           \
+    X(PFNGLRENDERBUFFERSTORAGEPROC, RenderbufferStorage)                                     \
+    X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                                                     \
+    X(PFNGLREADBUFFERPROC, ReadBuffer)                                                       \
+    X(PFNGLREADPIXELSPROC, ReadPixels)                                                       \
+    X(PFNGLPIXELSTOREIPROC, PixelStorei)                                                     \
+    X(PFNGLFINISHPROC, Finish)
+
+struct GlApi {
+#define STIPPLE_GL_MEMBER(type, name) type name = nullptr;
+    STIPPLE_GL_FUNCTIONS(STIPPLE_GL_MEMBER)
+#undef STIPPLE_GL_MEMBER
+    bool desktop = false;  // a desktop GL context (OSMesa): needs point-size/sprite enables
+};
+
+using GetProcAddress = void* (*)(const char* name);
+
+// Fills every entry; returns the name of the first missing function, or nullptr.
+const char* load_gl_api(GetProcAddress get_proc, GlApi* gl);
+
+}  // namespace stipple

@@ -1,0 +1,48 @@
+#include "runtime/point_placement.h"
+
+#include <cmath>
+
+namespace stipple {
+
+void place_points(const PointsView& points, const uint32_t* indices, const float* positions,
+                  const float* normals, float* out_positions, float* out_normals) {
+    for (uint32_t i = 0; i < points.point_count; ++i) {
+        const uint32_t* tri = indices + size_t(points.host_triangle[i]) * 3;
+        const float u = points.bary_u[i], v = points.bary_v[i], w = 1.0f - u - v;
+        const float* a = positions + size_t(tri[0]) * 3;
+        const float* b = positions + size_t(tri[1]) * 3;
+        const float* c = positions + size_t(tri[2]) * 3;
+        const float* na = normals + size_t(tri[0]) * 3;
+        const float* nb = normals + size_t(tri[1]) * 3;
+        const float* nc = normals + size_t(tri[2]) * 3;
+        float n[3];
+        for (int k = 0; k < 3; ++k) {
+            out_positions[size_t(i) * 3 + k] = u * a[k] + v * b[k] + w * c[k];
+            n[k] = u * na[k] + v * nb[k] + w * nc[k];
+        }
+        float len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        float inv = len2 > 1e-20f ? 1.0f / std::sqrt(len2) : 0.0f;
+        for (int k = 0; k < 3; ++k) out_normals[size_t(i) * 3 + k] = n[k] * inv;
+    }
+}
+
+void recompute_relevance(const PointsView& points, const float* point_positions,
+                         const float* fallback_radius, float* out_radius) {
+    for (uint32_t i = 0; i < points.point_count; ++i) {
+        const uint32_t begin = points.neighbour_offsets[i], end = points.neighbour_offsets[i + 1];
+        if (begin == end) {
+            out_radius[i] = fallback_radius[i];
+            continue;
+        }
+        const float* p = point_positions + size_t(i) * 3;
+        float sum = 0.0f;
+        for (uint32_t k = begin; k < end; ++k) {
+            const float* q = point_positions + size_t(points.neighbours[k]) * 3;
+            float dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2];
+            sum += std::sqrt(dx * dx + dy * dy + dz * dz);
+        }
+        out_radius[i] = sum / float(end - begin);
+    }
+}
+
+}  // namespace stipple

@@ -1,0 +1,275 @@
+#include "runtime/renderer.h"
+
+#include <cstdio>
+
+namespace stipple {
+
+namespace {
+
+const char* kMeshVs = R"(#version 300 es
+layout(location = 0) in vec3 a_position;
+uniform mat4 u_view_projection;
+uniform float u_depth_bias;
+void main() {
+    gl_Position = u_view_projection * vec4(a_position, 1.0);
+    gl_Position.z += u_depth_bias * gl_Position.w;
+}
+)";
+
+const char* kMeshFs = R"(#version 300 es
+precision highp float;
+uniform vec4 u_paper;
+layout(location = 0) out vec4 o_color;
+layout(location = 1) out vec4 o_depth;
+void main() {
+    o_color = vec4(u_paper.rgb, 1.0);
+    o_depth = vec4(gl_FragCoord.z);
+}
+)";
+
+// Dots narrower than a pixel are drawn one pixel wide with proportionally less ink, so the
+// ink laid down stays pi (d/2)^2 for every diameter d and tone is not quantised by pixels.
+const char* kPointVs = R"(#version 300 es
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in float a_size;
+uniform mat4 u_view_projection;
+out float v_radius;
+out float v_ink_scale;
+void main() {
+    if (a_size <= 0.0) {
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: not rasterised
+        gl_PointSize = 1.0;
+        v_radius = 0.0;
+        v_ink_scale = 0.0;
+        return;
+    }
+    gl_Position = u_view_projection * vec4(a_position, 1.0);
+    float r = max(0.5 * a_size, 0.5);
+    float f = 0.5 * a_size / r;
+    v_radius = r;
+    v_ink_scale = f * f;
+    gl_PointSize = 2.0 * r + 1.0;
+}
+)";
+
+const char* kPointFs = R"(#version 300 es
+precision highp float;
+in float v_radius;
+in float v_ink_scale;
+uniform vec4 u_ink;
+layout(location = 0) out vec4 o_color;
+void main() {
+    float d = length(gl_PointCoord - vec2(0.5)) * (2.0 * v_radius + 1.0);
+    float coverage = clamp(v_radius + 0.5 - d, 0.0, 1.0) * v_ink_scale;
+    if (coverage <= 0.0) discard;
+    o_color = vec4(u_ink.rgb, coverage);
+}
+)";
+
+GLuint compile(const GlApi& gl, GLenum type, const char* source, char* error, size_t size) {
+    GLuint s = gl.CreateShader(type);
+    gl.ShaderSource(s, 1, &source, nullptr);
+    gl.CompileShader(s);
+    GLint ok = 0;
+    gl.GetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[512] = {};
+        gl.GetShaderInfoLog(s, sizeof(log), nullptr, log);
+        std::snprintf(error, size, "shader compile failed: %s", log);
+        gl.DeleteShader(s);
+        return 0;
+    }
+    return s;
+}
+
+GLuint link(const GlApi& gl, const char* vs, const char* fs, char* error, size_t size) {
+    GLuint v = compile(gl, GL_VERTEX_SHADER, vs, error, size);
+    GLuint f = v ? compile(gl, GL_FRAGMENT_SHADER, fs, error, size) : 0;
+    if (!f) {
+        if (v) gl.DeleteShader(v);
+        return 0;
+    }
+    GLuint p = gl.CreateProgram();
+    gl.AttachShader(p, v);
+    gl.AttachShader(p, f);
+    gl.LinkProgram(p);
+    gl.DeleteShader(v);
+    gl.DeleteShader(f);
+    GLint ok = 0;
+    gl.GetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[512] = {};
+        gl.GetProgramInfoLog(p, sizeof(log), nullptr, log);
+        std::snprintf(error, size, "program link failed: %s", log);
+        gl.DeleteProgram(p);
+        return 0;
+    }
+    return p;
+}
+
+GLuint renderbuffer(const GlApi& gl, GLenum format, int w, int h) {
+    GLuint rb = 0;
+    gl.GenRenderbuffers(1, &rb);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, rb);
+    gl.RenderbufferStorage(GL_RENDERBUFFER, format, w, h);
+    return rb;
+}
+
+GLuint dynamic_buffer(const GlApi& gl, GLuint location, GLint components, size_t bytes) {
+    GLuint b = 0;
+    gl.GenBuffers(1, &b);
+    gl.BindBuffer(GL_ARRAY_BUFFER, b);
+    gl.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_DRAW);
+    gl.EnableVertexAttribArray(location);
+    gl.VertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, 0, nullptr);
+    return b;
+}
+
+}  // namespace
+
+bool renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config, char* error,
+                   size_t error_size) {
+    *r = Renderer();
+    r->gl = gl;
+    r->config = config;
+    const int w = config.width, h = config.height;
+
+    gl.GenFramebuffers(1, &r->fbo);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+    r->color_rb = renderbuffer(gl, GL_RGBA8, w, h);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, r->color_rb);
+    r->depth_copy_rb = renderbuffer(gl, GL_R32F, w, h);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER,
+                               r->depth_copy_rb);
+    r->depth_rb = renderbuffer(gl, GL_DEPTH_COMPONENT24, w, h);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, r->depth_rb);
+    GLenum status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        std::snprintf(error, error_size, "framebuffer %dx%d incomplete (status 0x%x)", w, h,
+                      status);
+        renderer_destroy(r);
+        return false;
+    }
+
+    r->mesh_program = link(gl, kMeshVs, kMeshFs, error, error_size);
+    r->point_program = r->mesh_program ? link(gl, kPointVs, kPointFs, error, error_size) : 0;
+    if (!r->point_program) {
+        renderer_destroy(r);
+        return false;
+    }
+    r->mesh_vp = gl.GetUniformLocation(r->mesh_program, "u_view_projection");
+    r->mesh_bias = gl.GetUniformLocation(r->mesh_program, "u_depth_bias");
+    r->mesh_paper = gl.GetUniformLocation(r->mesh_program, "u_paper");
+    r->point_vp = gl.GetUniformLocation(r->point_program, "u_view_projection");
+    r->point_ink = gl.GetUniformLocation(r->point_program, "u_ink");
+
+    gl.GenVertexArrays(1, &r->mesh_vao);
+    gl.BindVertexArray(r->mesh_vao);
+    r->mesh_vbo = dynamic_buffer(gl, 0, 3, size_t(config.vertex_count) * 12);
+    gl.GenBuffers(1, &r->mesh_ibo);
+    gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->mesh_ibo);
+    gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(size_t(config.triangle_count) * 12),
+                  config.indices, GL_STATIC_DRAW);
+
+    gl.GenVertexArrays(1, &r->point_vao);
+    gl.BindVertexArray(r->point_vao);
+    r->point_pos_vbo = dynamic_buffer(gl, 0, 3, size_t(config.max_points) * 12);
+    r->point_size_vbo = dynamic_buffer(gl, 1, 1, size_t(config.max_points) * 4);
+    gl.BindVertexArray(0);
+
+    if (gl.desktop) {
+        gl.Enable(0x8642);  // GL_PROGRAM_POINT_SIZE: desktop GL ignores gl_PointSize without it
+        gl.Enable(0x8861);  // GL_POINT_SPRITE: gl_PointCoord in compatibility profiles
+    }
+    if (gl.GetError() != GL_NO_ERROR) {
+        std::snprintf(error, error_size, "GL error while creating renderer resources");
+        renderer_destroy(r);
+        return false;
+    }
+    return true;
+}
+
+void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const float* positions,
+                        uint32_t vertex_count) {
+    const GlApi& gl = r->gl;
+    const RendererConfig& c = r->config;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+    const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    gl.DrawBuffers(2, both);
+    gl.Viewport(0, 0, c.width, c.height);
+    const float background[4] = {c.background[0], c.background[1], c.background[2], 1.0f};
+    const float far_depth[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    gl.ClearBufferfv(GL_COLOR, 0, background);
+    gl.ClearBufferfv(GL_COLOR, 1, far_depth);
+    gl.Clear(GL_DEPTH_BUFFER_BIT);
+
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LESS);
+    gl.DepthMask(GL_TRUE);
+    gl.Disable(GL_BLEND);
+    gl.UseProgram(r->mesh_program);
+    gl.UniformMatrix4fv(r->mesh_vp, 1, GL_FALSE, &view_projection[0][0]);
+    gl.Uniform1f(r->mesh_bias, c.depth_bias);
+    gl.Uniform4f(r->mesh_paper, c.paper[0], c.paper[1], c.paper[2], 1.0f);
+    gl.BindVertexArray(r->mesh_vao);
+    gl.BindBuffer(GL_ARRAY_BUFFER, r->mesh_vbo);
+    gl.BufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(vertex_count) * 12), positions);
+    gl.DrawElements(GL_TRIANGLES, GLsizei(c.triangle_count * 3), GL_UNSIGNED_INT, nullptr);
+}
+
+void renderer_draw_points(Renderer* r, const glm::mat4& view_projection, const float* positions,
+                          const float* sizes, uint32_t point_count) {
+    const GlApi& gl = r->gl;
+    const GLenum first[1] = {GL_COLOR_ATTACHMENT0};
+    gl.DrawBuffers(1, first);
+    gl.DepthFunc(GL_LEQUAL);
+    gl.DepthMask(GL_FALSE);
+    gl.Enable(GL_BLEND);
+    gl.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    gl.UseProgram(r->point_program);
+    gl.UniformMatrix4fv(r->point_vp, 1, GL_FALSE, &view_projection[0][0]);
+    gl.Uniform4f(r->point_ink, r->config.ink[0], r->config.ink[1], r->config.ink[2], 1.0f);
+    gl.BindVertexArray(r->point_vao);
+    gl.BindBuffer(GL_ARRAY_BUFFER, r->point_pos_vbo);
+    gl.BufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(point_count) * 12), positions);
+    gl.BindBuffer(GL_ARRAY_BUFFER, r->point_size_vbo);
+    gl.BufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(point_count) * 4), sizes);
+    gl.DrawArrays(GL_POINTS, 0, GLsizei(point_count));
+    gl.BindVertexArray(0);
+}
+
+void renderer_read_color(Renderer* r, uint8_t* rgba) {
+    const GlApi& gl = r->gl;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.ReadPixels(0, 0, r->config.width, r->config.height, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+}
+
+void renderer_read_depth(Renderer* r, float* scratch, float* depth) {
+    const GlApi& gl = r->gl;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT1);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl.ReadPixels(0, 0, r->config.width, r->config.height, GL_RGBA, GL_FLOAT, scratch);
+    const size_t n = size_t(r->config.width) * size_t(r->config.height);
+    for (size_t i = 0; i < n; ++i) depth[i] = scratch[i * 4];
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+}
+
+void renderer_destroy(Renderer* r) {
+    const GlApi& gl = r->gl;
+    if (!gl.DeleteBuffers) return;
+    GLuint buffers[4] = {r->mesh_vbo, r->mesh_ibo, r->point_pos_vbo, r->point_size_vbo};
+    gl.DeleteBuffers(4, buffers);
+    GLuint vaos[2] = {r->mesh_vao, r->point_vao};
+    gl.DeleteVertexArrays(2, vaos);
+    if (r->mesh_program) gl.DeleteProgram(r->mesh_program);
+    if (r->point_program) gl.DeleteProgram(r->point_program);
+    GLuint rbs[3] = {r->color_rb, r->depth_copy_rb, r->depth_rb};
+    gl.DeleteRenderbuffers(3, rbs);
+    if (r->fbo) gl.DeleteFramebuffers(1, &r->fbo);
+    *r = Renderer();
+}
+
+}  // namespace stipple

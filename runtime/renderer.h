@@ -1,0 +1,58 @@
+// GLES 3 stipple renderer (thesis §3.2): the mesh is drawn as a plain "paper" coloured depth
+// pass pushed slightly behind the surface, then every point is drawn as a round,
+// antialiased dot of its computed diameter, depth-tested against that pass.
+// All GL objects are created in renderer_init; drawing a frame creates nothing.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "runtime/gl_api.h"
+
+namespace stipple {
+
+struct RendererConfig {
+    int width = 640;
+    int height = 480;
+    uint32_t max_points = 0;        // capacity of the point buffers
+    uint32_t vertex_count = 0;      // capacity of the mesh vertex buffer
+    const uint32_t* indices = nullptr;  // triangle list, uploaded once
+    uint32_t triangle_count = 0;
+    float background[3] = {1.0f, 1.0f, 1.0f};
+    float paper[3] = {1.0f, 1.0f, 1.0f};  // colour of the depth pass (the object's body)
+    float ink[3] = {0.0f, 0.0f, 0.0f};
+    // Clip-space depth offset of the mesh pass, as a fraction of w (NDC units): keeps dots
+    // lying on the surface in front of it (§3.2 "slightly behind the particles").
+    float depth_bias = 0.002f;
+};
+
+struct Renderer {
+    GlApi gl;
+    RendererConfig config;
+    GLuint fbo = 0, color_rb = 0, depth_copy_rb = 0, depth_rb = 0;
+    GLuint mesh_program = 0, point_program = 0;
+    GLint mesh_vp = -1, mesh_bias = -1, mesh_paper = -1, point_vp = -1, point_ink = -1;
+    GLuint mesh_vao = 0, mesh_vbo = 0, mesh_ibo = 0;
+    GLuint point_vao = 0, point_pos_vbo = 0, point_size_vbo = 0;
+};
+
+// Creates the framebuffer, shaders and buffers. On failure writes one line into `error`.
+bool renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config, char* error,
+                   size_t error_size);
+
+// Draws one frame into the offscreen framebuffer.
+void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const float* positions,
+                        uint32_t vertex_count);
+void renderer_draw_points(Renderer* r, const glm::mat4& view_projection, const float* positions,
+                          const float* sizes, uint32_t point_count);
+
+// Reads back the frame as RGBA8, bottom row first (width * height * 4 bytes).
+void renderer_read_color(Renderer* r, uint8_t* rgba);
+// Reads back the mesh pass's window depth (1 = background), bottom row first. `scratch`
+// must hold width * height * 4 floats; the result is written to depth (width * height).
+void renderer_read_depth(Renderer* r, float* scratch, float* depth);
+
+void renderer_destroy(Renderer* r);
+
+}  // namespace stipple

@@ -1,0 +1,37 @@
+#include "runtime/stipple_size.h"
+
+#include <cmath>
+
+namespace stipple {
+
+void size_stipples(uint32_t count, const float* positions, const float* normals,
+                   const float* radius, const SizeParams& params, float* out_size) {
+    // Pixels per world unit at clip depth w is focal / w, with focal = P[1][1] * H / 2.
+    // view_projection row 3 gives w; row 1's scale is folded into `focal` via the caller's
+    // projection, so we take |row1| of view_projection directly.
+    const glm::mat4& m = params.view_projection;
+    const glm::vec4 row_w(m[0][3], m[1][3], m[2][3], m[3][3]);
+    const float focal = glm::length(glm::vec3(m[0][1], m[1][1], m[2][1])) * params.viewport_height * 0.5f;
+    const glm::vec3 l = params.light_direction;
+    for (uint32_t i = 0; i < count; ++i) {
+        const glm::vec3 p(positions[i * 3], positions[i * 3 + 1], positions[i * 3 + 2]);
+        const glm::vec3 n(normals[i * 3], normals[i * 3 + 1], normals[i * 3 + 2]);
+        const glm::vec3 to_eye = params.eye - p;
+        const float n_dot_v = glm::dot(n, to_eye) / glm::length(to_eye);
+        const float w = glm::dot(row_w, glm::vec4(p, 1.0f));
+        if (n_dot_v <= 0.0f || w <= 0.0f) {
+            out_size[i] = 0.0f;
+            continue;
+        }
+        const float r_px = radius[i] * focal / w;
+        const float region_px = kRegionPerRadiusSquared * r_px * r_px * n_dot_v;  // §3.1.2
+        float tone = params.constant_tone;
+        if (tone < 0.0f) {
+            const float lit = std::fmax(glm::dot(n, l), 0.0f);
+            tone = params.dark_tone + (params.light_tone - params.dark_tone) * lit;
+        }
+        out_size[i] = smooth_point_size(tone, region_px, params.max_point_size, params.smooth_slope);
+    }
+}
+
+}  // namespace stipple

@@ -1,0 +1,44 @@
+// Stipple sizing: target tone -> dot diameter in pixels (thesis ch. 3).
+#pragma once
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+namespace stipple {
+
+struct SizeParams {
+    glm::mat4 view_projection = glm::mat4(1.0f);
+    glm::vec3 eye = glm::vec3(0.0f);        // camera position (world)
+    float viewport_height = 480.0f;         // pixels
+    float max_point_size = 3.0f;            // MaximumPtSize, pixels (thesis: typically ~3)
+    float smooth_slope = 2.0f;              // smoothSlope of Alg. 3.2, > 1
+    float constant_tone = -1.0f;            // in [0,1] to override lighting; < 0: Lambert
+    glm::vec3 light_direction = glm::vec3(0.0f, 0.0f, 1.0f);  // towards the light, unit
+    float dark_tone = 0.6f;                 // target tone where N.L <= 0
+    float light_tone = 0.0f;                // target tone where N.L = 1
+};
+
+// Area of a point's region of influence per squared relevance radius: points spaced r
+// apart on a surface each own a hexagonal cell of sqrt(3)/2 r^2.
+constexpr float kRegionPerRadiusSquared = 0.8660254f;
+
+// Thesis Alg. 3.2 (smooth point rendering) for one point: the diameter in pixels, from its
+// target tone and the screen area of its region of influence.
+inline float smooth_point_size(float target_tone, float region_px, float max_point_size,
+                               float smooth_slope) {
+    const float dot_area = 0.785398163f * max_point_size * max_point_size;  // pi (d/2)^2
+    const float given_tone = dot_area / region_px;                          // GivenTone
+    const float ratio = target_tone / given_tone;
+    float s = (ratio - 1.0f) / (smooth_slope - 1.0f);
+    s = s < 0.0f ? 0.0f : (s > 1.0f ? 1.0f : s);
+    return s * max_point_size;
+}
+
+// Sizes every point: target tone (constant, or Lambert from one directional light), the
+// region of influence projected to the screen (§3.1.1: radius times pixels per unit at the
+// point's depth, squared) and reduced by the slope factor N.V (§3.1.2), then Alg. 3.2.
+// Back-facing points get size 0.
+void size_stipples(uint32_t count, const float* positions, const float* normals,
+                   const float* radius, const SizeParams& params, float* out_size);
+
+}  // namespace stipple

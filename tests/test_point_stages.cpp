@@ -1,0 +1,118 @@
+// Unit tests of the CPU frame stages: barycentric placement (Alg. 6.3), relevance
+// recompute (Alg. 6.4) and the smooth size rule (Alg. 3.2) with the slope factor.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "runtime/point_placement.h"
+#include "runtime/stipple_size.h"
+
+namespace {
+
+using stipple::PointsView;
+
+// Two triangles of a unit quad in the z=0 plane.
+const float kQuad[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+const float kUp[] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+const uint32_t kQuadIndices[] = {0, 1, 2, 0, 2, 3};
+
+TEST(PointPlacement, BarycentricPointFollowsItsHostTriangle) {
+    const uint32_t host[] = {0, 1};
+    const float u[] = {0.2f, 1.0f}, v[] = {0.3f, 0.0f}, r[] = {1, 1};
+    const uint32_t offsets[] = {0, 0, 0};
+    PointsView pv;
+    pv.point_count = 2;
+    pv.host_triangle = host;
+    pv.bary_u = u;
+    pv.bary_v = v;
+    pv.radius = r;
+    pv.neighbour_offsets = offsets;
+    float pos[6], nrm[6];
+    stipple::place_points(pv, kQuadIndices, kQuad, kUp, pos, nrm);
+    // Point 0: 0.2*(0,0,0) + 0.3*(1,0,0) + 0.5*(1,1,0) = (0.8, 0.5, 0).
+    EXPECT_FLOAT_EQ(pos[0], 0.8f);
+    EXPECT_FLOAT_EQ(pos[1], 0.5f);
+    EXPECT_FLOAT_EQ(pos[2], 0.0f);
+    // Point 1 sits on vertex 0 of triangle 1.
+    EXPECT_FLOAT_EQ(pos[3], 0.0f);
+    EXPECT_FLOAT_EQ(pos[4], 0.0f);
+    EXPECT_FLOAT_EQ(nrm[2], 1.0f);
+
+    // Deform: stretch the quad to twice its width; the point moves with it.
+    float stretched[12];
+    for (int i = 0; i < 12; ++i) stretched[i] = kQuad[i] * (i % 3 == 0 ? 2.0f : 1.0f);
+    stipple::place_points(pv, kQuadIndices, stretched, kUp, pos, nrm);
+    EXPECT_FLOAT_EQ(pos[0], 1.6f);
+    EXPECT_FLOAT_EQ(pos[1], 0.5f);
+}
+
+TEST(Relevance, RecomputedAsMeanDistanceToNeighboursInCurrentPose) {
+    // Point 0 at the origin with neighbours at distance 1 (x) and 3 (y): radius 2.
+    const float positions[] = {0, 0, 0, 1, 0, 0, 0, 3, 0};
+    const uint32_t offsets[] = {0, 2, 2, 2};
+    const uint32_t neighbours[] = {1, 2};
+    const float fallback[] = {9, 7, 5};
+    PointsView pv;
+    pv.point_count = 3;
+    pv.neighbour_offsets = offsets;
+    pv.neighbours = neighbours;
+    float radius[3];
+    stipple::recompute_relevance(pv, positions, fallback, radius);
+    EXPECT_FLOAT_EQ(radius[0], 2.0f);
+    EXPECT_FLOAT_EQ(radius[1], 7.0f);  // no neighbours: keeps its fallback
+    // Stretching x by 4 moves neighbour 1 to distance 4: radius (4 + 3) / 2.
+    const float stretched[] = {0, 0, 0, 4, 0, 0, 0, 3, 0};
+    stipple::recompute_relevance(pv, stretched, fallback, radius);
+    EXPECT_FLOAT_EQ(radius[0], 3.5f);
+}
+
+TEST(SmoothPointSize, FollowsAlgorithm32) {
+    const float max_size = 3.0f, slope = 2.0f;
+    const float dot_area = 3.14159265f * 1.5f * 1.5f;
+    // GivenTone = dot_area / region; ratio = target / given.
+    // ratio 0.5 (< 1): not drawn.
+    EXPECT_FLOAT_EQ(stipple::smooth_point_size(0.25f, 0.5f * dot_area / 0.25f, max_size, slope), 0.0f);
+    // region = 2 * dot_area / target  -> ratio 2 = smoothSlope: full size.
+    EXPECT_NEAR(stipple::smooth_point_size(0.3f, 2.0f * dot_area / 0.3f, max_size, slope), 3.0f, 1e-5);
+    // ratio 1.5: halfway, (1.5 - 1) / (2 - 1) * 3 = 1.5 px.
+    EXPECT_NEAR(stipple::smooth_point_size(0.3f, 1.5f * dot_area / 0.3f, max_size, slope), 1.5f, 1e-5);
+    // ratio 0.9: zero.
+    EXPECT_FLOAT_EQ(stipple::smooth_point_size(0.3f, 0.9f * dot_area / 0.3f, max_size, slope), 0.0f);
+    // Huge region: clamps to the maximum.
+    EXPECT_FLOAT_EQ(stipple::smooth_point_size(0.3f, 1e6f, max_size, slope), 3.0f);
+    // White tone never draws.
+    EXPECT_FLOAT_EQ(stipple::smooth_point_size(0.0f, 1e6f, max_size, slope), 0.0f);
+}
+
+TEST(SizeStipples, SlopeFactorAndBackFacesAndScreenScale) {
+    // Identity camera looking down -z from the origin is awkward; use a simple view-projection:
+    // orthographic-like scale with w = 1 so pixels per unit = |row1| * H / 2.
+    stipple::SizeParams params;
+    params.view_projection = glm::mat4(1.0f);
+    params.view_projection[1][1] = 0.1f;  // 0.1 NDC per unit -> 0.1 * 480 / 2 = 24 px per unit
+    params.eye = glm::vec3(0, 0, 10);
+    params.viewport_height = 480;
+    params.constant_tone = 0.3f;
+    const float positions[] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    const float c60 = 0.5f;  // cos 60 degrees
+    const float normals[] = {0, 0, 1, std::sqrt(1 - c60 * c60), 0, c60, 0, 0, -1};
+    // radius chosen so the facing point's ratio is exactly 1.5 (size 1.5 px).
+    const float dot_area = 3.14159265f * 1.5f * 1.5f;
+    const float region = 1.5f * dot_area / 0.3f;
+    const float r_px = std::sqrt(region / stipple::kRegionPerRadiusSquared);
+    const float r = r_px / 24.0f;
+    const float radius[] = {r, r, r};
+    float size[3];
+    stipple::size_stipples(3, positions, normals, radius, params, size);
+    EXPECT_NEAR(size[0], 1.5f, 1e-3);
+    // N.V = 0.5 halves the region: ratio 0.75 -> not drawn (thesis §3.1.2).
+    EXPECT_FLOAT_EQ(size[1], 0.0f);
+    EXPECT_FLOAT_EQ(size[2], 0.0f);  // back-facing
+    // Twice the screen scale quadruples the region: ratio 6 -> full size.
+    params.view_projection[1][1] = 0.2f;
+    stipple::size_stipples(3, positions, normals, radius, params, size);
+    EXPECT_FLOAT_EQ(size[0], 3.0f);
+    EXPECT_NEAR(size[1], 3.0f, 1e-5);  // ratio 3 > smoothSlope
+}
+
+}  // namespace

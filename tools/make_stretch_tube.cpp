@@ -1,0 +1,442 @@
+// make-stretch-tube: writes the "stretch tube" test asset, a skinned closed tube whose upper part
+// is scaled 2x along its axis by an animation. Non-uniform joint scale stretches the surface far
+// more than any of the rigged characters do, so it exercises what happens to stipple density when
+// the area of host faces changes under skinning.
+//
+// The geometry (glTF 2.0 conventions: +Y up, counter-clockwise front faces, outward normals):
+//   - side: radius 0.25 around +Y from y = 0 to y = 2, `segments_around` x `segments_along` quads;
+//   - caps: flat triangle fans at y = 0 and y = 2 around a centre vertex, with their own copies of
+//     the rim vertices so that they carry the cap normal.
+// The rig: "lower" at the origin, "upper" its child at (0, 0.5, 0). A vertex is bound to lower
+// below y = 0.45, to upper above y = 0.55, and blended linearly in between.
+// Animations: "stretch" scales upper by (1,1,1) -> (1,2,1) -> (1,1,1) at t = 0, 1, 2 s (so the
+// top reaches y = 3.5 at t = 1); "rest" holds scale (1,1,1) so a player can show the bind pose.
+
+#include <tiny_gltf.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <string>
+#include <vector>
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr float kRadius = 0.25f;
+constexpr float kLength = 2.0f;
+constexpr float kUpperJointY = 0.5f;
+constexpr float kBlendBegin = 0.45f;  // at or below: weight 1 on "lower"
+constexpr float kBlendEnd = 0.55f;    // at or above: weight 1 on "upper"
+constexpr int kDefaultSegmentsAround = 48;
+constexpr int kDefaultSegmentsAlong = 64;
+constexpr int kMaxSegments = 4096;
+
+// bufferView.target values (glTF 2.0 spec, bufferView.target).
+constexpr int kArrayBuffer = 34962;
+constexpr int kElementArrayBuffer = 34963;
+
+struct Options {
+    std::string out_path;
+    int segments_around = kDefaultSegmentsAround;
+    int segments_along = kDefaultSegmentsAlong;
+};
+
+struct Vertex {
+    glm::vec3 position;
+    glm::vec3 normal;
+    uint8_t joints[4];
+    float weights[4];
+};
+
+struct TubeMesh {
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;  // triangles
+};
+
+void print_usage(std::FILE* out) {
+    std::fprintf(
+        out,
+        "usage: make-stretch-tube OUT.gltf [--segments-around N] [--segments-along M]\n"
+        "  Writes a skinned closed tube (radius 0.25, y from 0 to 2) with joints \"lower\"\n"
+        "  and \"upper\" and animations \"stretch\" (upper scaled 1 -> 2 -> 1 along Y over\n"
+        "  2 s) and \"rest\", as glTF with an embedded buffer.\n"
+        "  --segments-around N   quads around the tube, 3..%d (default %d)\n"
+        "  --segments-along M    quads along the tube, 1..%d (default %d)\n",
+        kMaxSegments, kDefaultSegmentsAround, kMaxSegments, kDefaultSegmentsAlong);
+}
+
+bool parse_int(const std::string& text, int lo, int hi, int* value) {
+    if (text.empty()) return false;
+    errno = 0;
+    char* end = nullptr;
+    const long v = std::strtol(text.c_str(), &end, 10);
+    if (errno != 0 || *end != '\0' || v < lo || v > hi) return false;
+    *value = static_cast<int>(v);
+    return true;
+}
+
+// Returns 0 when the options are usable, -1 after --help, or 2 after printing a one-line error.
+int parse_options(int argc, char** argv, Options* options) {
+    for (int i = 1; i < argc; ++i) {
+        std::string arg = argv[i];
+        if (arg == "--help" || arg == "-h") {
+            print_usage(stdout);
+            return -1;
+        }
+        if (arg.rfind("--", 0) == 0) {
+            std::string value;
+            const size_t eq = arg.find('=');
+            if (eq != std::string::npos) {
+                value = arg.substr(eq + 1);
+                arg = arg.substr(0, eq);
+            } else if (i + 1 < argc) {
+                value = argv[++i];
+            } else {
+                std::fprintf(stderr, "make-stretch-tube: %s needs a value (see --help)\n",
+                             arg.c_str());
+                return 2;
+            }
+            int* target = nullptr;
+            int lo = 1;
+            if (arg == "--segments-around") {
+                target = &options->segments_around;
+                lo = 3;
+            } else if (arg == "--segments-along") {
+                target = &options->segments_along;
+            } else {
+                std::fprintf(stderr, "make-stretch-tube: unknown option '%s' (see --help)\n",
+                             arg.c_str());
+                return 2;
+            }
+            if (!parse_int(value, lo, kMaxSegments, target)) {
+                std::fprintf(stderr,
+                             "make-stretch-tube: %s wants an integer in [%d, %d], got '%s'\n",
+                             arg.c_str(), lo, kMaxSegments, value.c_str());
+                return 2;
+            }
+        } else if (options->out_path.empty()) {
+            options->out_path = arg;
+        } else {
+            std::fprintf(stderr, "make-stretch-tube: more than one output path ('%s', '%s')\n",
+                         options->out_path.c_str(), arg.c_str());
+            return 2;
+        }
+    }
+    if (options->out_path.empty()) {
+        std::fprintf(stderr, "make-stretch-tube: no output path (see --help)\n");
+        return 2;
+    }
+    return 0;
+}
+
+// Rigid below kBlendBegin, rigid above kBlendEnd, linear in between.
+void set_skin_weights(Vertex* v) {
+    const float y = v->position.y;
+    float upper = 0.0f;
+    if (y >= kBlendEnd) {
+        upper = 1.0f;
+    } else if (y > kBlendBegin) {
+        upper = (y - kBlendBegin) / (kBlendEnd - kBlendBegin);
+    }
+    v->joints[0] = 0;
+    v->joints[1] = 1;
+    v->joints[2] = 0;
+    v->joints[3] = 0;
+    v->weights[0] = 1.0f - upper;
+    v->weights[1] = upper;
+    v->weights[2] = 0.0f;
+    v->weights[3] = 0.0f;
+}
+
+TubeMesh build_tube(int around, int along) {
+    TubeMesh mesh;
+    const auto ring_point = [&](int i, float y, glm::vec3* position, glm::vec3* normal) {
+        // x = r sin(theta), z = r cos(theta): increasing i then walks counter-clockwise when seen
+        // from outside, which the index order below relies on.
+        const double theta = 2.0 * kPi * i / around;
+        const float s = static_cast<float>(std::sin(theta));
+        const float c = static_cast<float>(std::cos(theta));
+        *position = glm::vec3(kRadius * s, y, kRadius * c);
+        *normal = glm::vec3(s, 0.0f, c);
+    };
+    const auto add_vertex = [&](const glm::vec3& position, const glm::vec3& normal) {
+        Vertex v{};
+        v.position = position;
+        v.normal = normal;
+        set_skin_weights(&v);
+        mesh.vertices.push_back(v);
+        return static_cast<uint32_t>(mesh.vertices.size() - 1);
+    };
+
+    // Side: rings k = 0..along, no seam duplicate (the asset has no texture coordinates).
+    for (int k = 0; k <= along; ++k) {
+        const float y = kLength * static_cast<float>(k) / static_cast<float>(along);
+        for (int i = 0; i < around; ++i) {
+            glm::vec3 p, n;
+            ring_point(i, y, &p, &n);
+            add_vertex(p, n);
+        }
+    }
+    const auto side = [&](int k, int i) { return static_cast<uint32_t>(k * around + i % around); };
+    for (int k = 0; k < along; ++k) {
+        for (int i = 0; i < around; ++i) {
+            const uint32_t a = side(k, i), b = side(k, i + 1);
+            const uint32_t c = side(k + 1, i + 1), d = side(k + 1, i);
+            mesh.indices.insert(mesh.indices.end(), {a, b, c, a, c, d});
+        }
+    }
+
+    // Caps: a centre vertex and a copy of the rim carrying the cap normal.
+    for (int top = 0; top < 2; ++top) {
+        const float y = top ? kLength : 0.0f;
+        const glm::vec3 cap_normal(0.0f, top ? 1.0f : -1.0f, 0.0f);
+        const uint32_t centre = add_vertex(glm::vec3(0.0f, y, 0.0f), cap_normal);
+        for (int i = 0; i < around; ++i) {
+            glm::vec3 p, n;
+            ring_point(i, y, &p, &n);
+            add_vertex(p, cap_normal);
+        }
+        for (int i = 0; i < around; ++i) {
+            const uint32_t r0 = centre + 1 + static_cast<uint32_t>(i);
+            const uint32_t r1 = centre + 1 + static_cast<uint32_t>((i + 1) % around);
+            if (top) {
+                mesh.indices.insert(mesh.indices.end(), {centre, r0, r1});
+            } else {
+                mesh.indices.insert(mesh.indices.end(), {centre, r1, r0});
+            }
+        }
+    }
+    return mesh;
+}
+
+// Every triangle's geometric normal must agree with its vertices' normals, i.e. it is
+// counter-clockwise seen from outside (glTF 2.0 spec, "Meshes").
+bool winding_is_outward(const TubeMesh& mesh) {
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const Vertex& a = mesh.vertices[mesh.indices[t]];
+        const Vertex& b = mesh.vertices[mesh.indices[t + 1]];
+        const Vertex& c = mesh.vertices[mesh.indices[t + 2]];
+        const glm::vec3 face = glm::cross(b.position - a.position, c.position - a.position);
+        if (glm::dot(face, a.normal + b.normal + c.normal) <= 0.0f) return false;
+    }
+    return true;
+}
+
+// Appends `bytes` to buffer 0 as a new buffer view, 4-byte aligned so that every accessor's
+// offset is a multiple of its component size (glTF 2.0 spec, "Data Alignment").
+int add_view(tinygltf::Model* model, const void* bytes, size_t size, int target) {
+    std::vector<unsigned char>& data = model->buffers[0].data;
+    while (data.size() % 4 != 0) data.push_back(0);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = data.size();
+    view.byteLength = size;
+    view.target = target;
+    const auto* p = static_cast<const unsigned char*>(bytes);
+    data.insert(data.end(), p, p + size);
+    model->bufferViews.push_back(view);
+    return static_cast<int>(model->bufferViews.size() - 1);
+}
+
+int add_accessor(tinygltf::Model* model, int view, int component_type, int type, size_t count,
+                 std::vector<double> min_values = {}, std::vector<double> max_values = {}) {
+    tinygltf::Accessor accessor;
+    accessor.bufferView = view;
+    accessor.byteOffset = 0;
+    accessor.componentType = component_type;
+    accessor.type = type;
+    accessor.count = count;
+    accessor.minValues = std::move(min_values);
+    accessor.maxValues = std::move(max_values);
+    model->accessors.push_back(accessor);
+    return static_cast<int>(model->accessors.size() - 1);
+}
+
+template <typename T>
+int add_array(tinygltf::Model* model, const std::vector<T>& values, int target) {
+    return add_view(model, values.data(), values.size() * sizeof(T), target);
+}
+
+// Adds an animation of one sampler that drives `node`'s scale through `scales` at `times`.
+void add_scale_animation(tinygltf::Model* model, const char* name, int node,
+                         const std::vector<float>& times, const std::vector<glm::vec3>& scales) {
+    std::vector<float> values;
+    for (const glm::vec3& s : scales) values.insert(values.end(), {s.x, s.y, s.z});
+    // Sampler inputs must carry min and max (glTF 2.0 spec, "Animations": input accessors must have
+    // min and max).
+    const int input =
+        add_accessor(model, add_array(model, times, 0), TINYGLTF_COMPONENT_TYPE_FLOAT,
+                     TINYGLTF_TYPE_SCALAR, times.size(), {times.front()}, {times.back()});
+    const int output =
+        add_accessor(model, add_array(model, values, 0), TINYGLTF_COMPONENT_TYPE_FLOAT,
+                     TINYGLTF_TYPE_VEC3, scales.size());
+    tinygltf::AnimationSampler sampler;
+    sampler.input = input;
+    sampler.output = output;
+    sampler.interpolation = "LINEAR";
+    tinygltf::AnimationChannel channel;
+    channel.sampler = 0;
+    channel.target_node = node;
+    channel.target_path = "scale";
+    tinygltf::Animation animation;
+    animation.name = name;
+    animation.samplers.push_back(sampler);
+    animation.channels.push_back(channel);
+    model->animations.push_back(animation);
+}
+
+tinygltf::Model build_model(const TubeMesh& mesh) {
+    tinygltf::Model model;
+    model.asset.version = "2.0";
+    model.asset.generator = "stipple tools/make_stretch_tube.cpp";
+    model.buffers.resize(1);
+
+    // Vertex attributes, one tightly packed view each.
+    std::vector<float> positions, normals, weights;
+    std::vector<uint8_t> joints;
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const Vertex& v : mesh.vertices) {
+        positions.insert(positions.end(), {v.position.x, v.position.y, v.position.z});
+        normals.insert(normals.end(), {v.normal.x, v.normal.y, v.normal.z});
+        joints.insert(joints.end(), v.joints, v.joints + 4);
+        weights.insert(weights.end(), v.weights, v.weights + 4);
+        lo = glm::min(lo, v.position);
+        hi = glm::max(hi, v.position);
+    }
+    const size_t n = mesh.vertices.size();
+    tinygltf::Primitive primitive;
+    primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    // POSITION must carry min and max (glTF 2.0 spec, "Meshes").
+    primitive.attributes["POSITION"] = add_accessor(
+        &model, add_array(&model, positions, kArrayBuffer), TINYGLTF_COMPONENT_TYPE_FLOAT,
+        TINYGLTF_TYPE_VEC3, n, {lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z});
+    primitive.attributes["NORMAL"] =
+        add_accessor(&model, add_array(&model, normals, kArrayBuffer),
+                     TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
+    primitive.attributes["JOINTS_0"] =
+        add_accessor(&model, add_array(&model, joints, kArrayBuffer),
+                     TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, n);
+    primitive.attributes["WEIGHTS_0"] =
+        add_accessor(&model, add_array(&model, weights, kArrayBuffer),
+                     TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, n);
+    if (n <= 65535) {
+        std::vector<uint16_t> indices(mesh.indices.begin(), mesh.indices.end());
+        primitive.indices = add_accessor(&model, add_array(&model, indices, kElementArrayBuffer),
+                                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                                         TINYGLTF_TYPE_SCALAR, indices.size());
+    } else {
+        primitive.indices = add_accessor(
+            &model, add_array(&model, mesh.indices, kElementArrayBuffer),
+            TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, mesh.indices.size());
+    }
+    tinygltf::Mesh gltf_mesh;
+    gltf_mesh.name = "tube";
+    gltf_mesh.primitives.push_back(primitive);
+    model.meshes.push_back(gltf_mesh);
+
+    // Nodes: 0 "lower" (joint root), 1 "upper" (its child), 2 the skinned mesh.
+    tinygltf::Node lower;
+    lower.name = "lower";
+    lower.children = {1};
+    tinygltf::Node upper;
+    upper.name = "upper";
+    upper.translation = {0.0, kUpperJointY, 0.0};
+    tinygltf::Node tube;
+    tube.name = "tube";
+    tube.mesh = 0;
+    tube.skin = 0;
+    model.nodes = {lower, upper, tube};
+
+    // Inverse bind matrices: the inverse of each joint's world matrix in the bind pose
+    // (glTF 2.0 spec, "Skins"), column-major like glm and glTF.
+    const glm::mat4 lower_world(1.0f);
+    const glm::mat4 upper_world =
+        lower_world * glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, kUpperJointY, 0.0f));
+    std::vector<float> inverse_binds;
+    for (const glm::mat4& world : {lower_world, upper_world}) {
+        const glm::mat4 inverse = glm::inverse(world);
+        inverse_binds.insert(inverse_binds.end(), glm::value_ptr(inverse),
+                             glm::value_ptr(inverse) + 16);
+    }
+    tinygltf::Skin skin;
+    skin.name = "tube_rig";
+    skin.joints = {0, 1};
+    skin.skeleton = 0;
+    skin.inverseBindMatrices = add_accessor(&model, add_array(&model, inverse_binds, 0),
+                                            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4, 2);
+    model.skins.push_back(skin);
+
+    add_scale_animation(&model, "stretch", 1, {0.0f, 1.0f, 2.0f},
+                        {glm::vec3(1.0f), glm::vec3(1.0f, 2.0f, 1.0f), glm::vec3(1.0f)});
+    add_scale_animation(&model, "rest", 1, {0.0f}, {glm::vec3(1.0f)});
+
+    tinygltf::Scene scene;
+    scene.name = "stretch_tube";
+    scene.nodes = {0, 2};
+    model.scenes.push_back(scene);
+    model.defaultScene = 0;
+    return model;
+}
+
+// Reloads what was written and checks the parts a player depends on, so a writer or loader
+// mismatch fails here rather than in a test far away.
+bool reload_matches(const std::string& path, const tinygltf::Model& written, std::string* why) {
+    tinygltf::TinyGLTF loader;
+    tinygltf::Model model;
+    std::string err, warn;
+    if (!loader.LoadASCIIFromFile(&model, &err, &warn, path)) {
+        *why = "tinygltf cannot load it: " + err;
+        return false;
+    }
+    if (model.meshes.size() != 1 || model.skins.size() != 1 || model.skins[0].joints.size() != 2 ||
+        model.nodes.size() != written.nodes.size() || model.animations.size() != 2 ||
+        model.animations[0].name != "stretch" || model.animations[1].name != "rest") {
+        *why = "the reloaded scene differs in structure";
+        return false;
+    }
+    if (model.buffers.size() != 1 || model.buffers[0].data != written.buffers[0].data) {
+        *why = "the reloaded buffer differs";
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options options;
+    const int parsed = parse_options(argc, argv, &options);
+    if (parsed == -1) return 0;
+    if (parsed != 0) return parsed;
+
+    const TubeMesh mesh = build_tube(options.segments_around, options.segments_along);
+    if (!winding_is_outward(mesh)) {
+        std::fprintf(stderr, "make-stretch-tube: internal error: a triangle faces inward\n");
+        return 1;
+    }
+    const tinygltf::Model model = build_model(mesh);
+
+    tinygltf::TinyGLTF writer;
+    if (!writer.WriteGltfSceneToFile(&model, options.out_path, /*embedImages=*/true,
+                                     /*embedBuffers=*/true, /*prettyPrint=*/true,
+                                     /*writeBinary=*/false)) {
+        std::fprintf(stderr, "make-stretch-tube: cannot write '%s'\n", options.out_path.c_str());
+        return 1;
+    }
+    std::string why;
+    if (!reload_matches(options.out_path, model, &why)) {
+        std::fprintf(stderr, "make-stretch-tube: '%s' does not reload: %s\n",
+                     options.out_path.c_str(), why.c_str());
+        return 1;
+    }
+    std::printf("make-stretch-tube: wrote %s (%zu vertices, %zu triangles)\n",
+                options.out_path.c_str(), mesh.vertices.size(), mesh.indices.size() / 3);
+    return 0;
+}

@@ -1,0 +1,261 @@
+// stipple-play: plays an animation clip of a .stip asset headless and writes PNG frames,
+// an animated PNG, optional per-frame dot lists and timing stats.
+#include <sys/stat.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <string>
+
+#include "platform/headless_context.h"
+#include "runtime/asset.h"
+#include "runtime/frame_pipeline.h"
+#include "tools/image_write.h"
+
+namespace {
+
+const char* kUsage =
+    "usage: stipple-play ASSET.stip --out DIR [options]\n"
+    "  --out DIR               where frame_NNNN.png and anim.png go (created if missing)\n"
+    "  --clip NAME|INDEX       animation clip (default 0; the rest pose if the asset has none)\n"
+    "  --frames N              frames to render (default 30, max 100000)\n"
+    "  --fps F                 frames per second of animation time (default 30)\n"
+    "  --time T0               start time in seconds (default 0); clips loop\n"
+    "  --size WxH              image size (default 640x480, max 8192x8192)\n"
+    "  --zoom Z                1 = rest-pose bounds fit the view, 2 = twice as large (default 1)\n"
+    "  --yaw DEG, --pitch DEG  camera orbit (default 0, 0: looking down -Z)\n"
+    "  --tone T                constant target tone in [0,1] instead of lighting\n"
+    "  --point-size PX         maximum stipple diameter (default 3, in [0.5, 32])\n"
+    "  --background RRGGBB     background colour (default ffffff)\n"
+    "  --no-relevance-update   keep rest-pose relevance radii (thesis Alg. 6.3 without 6.4)\n"
+    "  --dots-out              also write dots_NNNN.csv (id,x,y,size per drawn dot)\n"
+    "  --no-png                do not write per-frame PNGs\n"
+    "  --no-apng               do not write anim.png\n"
+    "  --stats                 print a JSON object of counts and timings to stdout\n"
+    "  --backend egl|osmesa    force a context backend (default: EGL, then OSMesa)\n"
+    "  -h, --help              this text\n";
+
+struct Options {
+    std::string asset, out, clip, backend;
+    long frames = 30;
+    double fps = 30, time0 = 0, zoom = 1, yaw = 0, pitch = 0, tone = -1, point_size = 3;
+    int width = 640, height = 480;
+    float background[3] = {1, 1, 1};
+    bool relevance_update = true, dots_out = false, png = true, apng = true, stats = false;
+};
+
+[[noreturn]] void die(const std::string& message) {
+    std::fprintf(stderr, "stipple-play: %s\n", message.c_str());
+    std::exit(1);
+}
+
+double parse_double(const std::string& option, const char* s, double lo, double hi) {
+    char* end = nullptr;
+    double v = std::strtod(s, &end);
+    if (end == s || *end != '\0' || !(v >= lo && v <= hi)) {
+        char buf[160];
+        std::snprintf(buf, sizeof(buf), "%s must be a number in [%g, %g], got '%s'",
+                      option.c_str(), lo, hi, s);
+        die(buf);
+    }
+    return v;
+}
+
+Options parse(int argc, char** argv) {
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        auto value = [&]() -> const char* {
+            if (i + 1 >= argc) die("option " + a + " needs a value");
+            return argv[++i];
+        };
+        if (a == "-h" || a == "--help") {
+            std::fputs(kUsage, stdout);
+            std::exit(0);
+        } else if (a == "--out") {
+            o.out = value();
+        } else if (a == "--clip") {
+            o.clip = value();
+        } else if (a == "--frames") {
+            o.frames = long(parse_double(a, value(), 1, 100000));
+        } else if (a == "--fps") {
+            o.fps = parse_double(a, value(), 0.001, 1000);
+        } else if (a == "--time") {
+            o.time0 = parse_double(a, value(), -1e6, 1e6);
+        } else if (a == "--size") {
+            const char* s = value();
+            if (std::sscanf(s, "%dx%d", &o.width, &o.height) != 2 || o.width < 16 ||
+                o.height < 16 || o.width > 8192 || o.height > 8192)
+                die(std::string("--size must be WxH with 16 <= W, H <= 8192, got '") + s + "'");
+        } else if (a == "--zoom") {
+            o.zoom = parse_double(a, value(), 0.01, 1000);
+        } else if (a == "--yaw") {
+            o.yaw = parse_double(a, value(), -3600, 3600);
+        } else if (a == "--pitch") {
+            o.pitch = parse_double(a, value(), -89, 89);
+        } else if (a == "--tone") {
+            o.tone = parse_double(a, value(), 0, 1);
+        } else if (a == "--point-size") {
+            o.point_size = parse_double(a, value(), 0.5, 32);
+        } else if (a == "--background") {
+            const char* s = value();
+            unsigned rgb = 0;
+            if (std::strlen(s) != 6 || std::sscanf(s, "%6x", &rgb) != 1)
+                die(std::string("--background must be RRGGBB hex, got '") + s + "'");
+            for (int k = 0; k < 3; ++k) o.background[k] = float((rgb >> (16 - 8 * k)) & 0xFF) / 255;
+        } else if (a == "--no-relevance-update") {
+            o.relevance_update = false;
+        } else if (a == "--dots-out") {
+            o.dots_out = true;
+        } else if (a == "--no-png") {
+            o.png = false;
+        } else if (a == "--no-apng") {
+            o.apng = false;
+        } else if (a == "--stats") {
+            o.stats = true;
+        } else if (a == "--backend") {
+            o.backend = value();
+            if (o.backend != "egl" && o.backend != "osmesa")
+                die("--backend must be egl or osmesa, got '" + o.backend + "'");
+        } else if (!a.empty() && a[0] == '-') {
+            die("unknown option '" + a + "' (see --help)");
+        } else if (o.asset.empty()) {
+            o.asset = a;
+        } else {
+            die("more than one asset given ('" + o.asset + "', '" + a + "')");
+        }
+    }
+    if (o.asset.empty()) die("no asset given (see --help)");
+    if (o.out.empty()) die("no output directory: pass --out DIR");
+    return o;
+}
+
+std::string frame_path(const Options& o, const char* stem, long frame, const char* ext) {
+    char name[64];
+    std::snprintf(name, sizeof(name), "/%s_%04ld.%s", stem, frame, ext);
+    return o.out + name;
+}
+
+// Writes the dots actually drawn in the last frame: size > 0, inside the image, and not
+// hidden by the mesh (the same depth comparison the GPU makes at the dot's centre pixel).
+bool write_dots(const stipple::Pipeline& p, const float* depth, const std::string& path) {
+    FILE* f = std::fopen(path.c_str(), "w");
+    if (!f) return false;
+    std::fputs("id,x,y,size\n", f);
+    const int w = p.config.width, h = p.config.height;
+    for (uint32_t i = 0; i < p.asset->points.point_count; ++i) {
+        if (p.size[i] <= 0.0f) continue;
+        glm::vec3 s = stipple::pipeline_project(p, i);
+        int px = int(std::floor(s.x)), py = int(std::floor(s.y));
+        if (px < 0 || py < 0 || px >= w || py >= h) continue;
+        float mesh_depth = depth[size_t(h - 1 - py) * size_t(w) + size_t(px)];
+        if (s.z > mesh_depth + 1e-5f) continue;
+        std::fprintf(f, "%u,%.2f,%.2f,%.3f\n", i, double(s.x), double(s.y), double(p.size[i]));
+    }
+    return std::fclose(f) == 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o = parse(argc, argv);
+    stipple::Asset asset;
+    stipple::LoadStatus st = stipple::load_asset_file(o.asset.c_str(), &asset);
+    if (!st.ok()) die(o.asset + ": " + st.message);
+    int clip = asset.clip_count > 0 ? 0 : -1;
+    if (!o.clip.empty()) {
+        clip = stipple::find_clip(asset, o.clip.c_str());
+        if (clip < 0) die("no clip '" + o.clip + "' in " + o.asset);
+    }
+    mkdir(o.out.c_str(), 0755);
+    struct stat info;
+    if (stat(o.out.c_str(), &info) != 0 || !S_ISDIR(info.st_mode))
+        die("cannot create output directory '" + o.out + "'");
+
+    stipple::platform::HeadlessConfig hc;
+    hc.width = o.width;
+    hc.height = o.height;
+    hc.allow_egl = o.backend != "osmesa";
+    hc.allow_osmesa = o.backend != "egl";
+    stipple::platform::HeadlessContext context;
+    std::string error;
+    if (!stipple::platform::create_headless_context(hc, &context, &error)) die(error);
+    stipple::GlApi gl;
+    if (const char* missing = stipple::load_gl_api(stipple::platform::proc_loader(context), &gl))
+        die(std::string("GL function ") + missing + " unavailable");
+
+    stipple::PipelineConfig pc;
+    pc.width = o.width;
+    pc.height = o.height;
+    pc.zoom = float(o.zoom);
+    pc.yaw_degrees = float(o.yaw);
+    pc.pitch_degrees = float(o.pitch);
+    pc.relevance_update = o.relevance_update;
+    pc.constant_tone = float(o.tone);
+    pc.max_point_size = float(o.point_size);
+    std::memcpy(pc.background, o.background, sizeof(pc.background));
+    std::unique_ptr<stipple::Pipeline> pipeline(new stipple::Pipeline());
+    char message[256] = {};
+    if (!stipple::pipeline_init(pipeline.get(), asset, gl, pc, message, sizeof(message)))
+        die(std::string("renderer: ") + message);
+
+    const size_t pixels = size_t(o.width) * size_t(o.height);
+    std::unique_ptr<uint8_t[]> rgba(new uint8_t[pixels * 4]);
+    std::unique_ptr<float[]> depth_scratch, depth;
+    if (o.dots_out) {
+        depth_scratch.reset(new float[pixels * 4]);
+        depth.reset(new float[pixels]);
+    }
+    stipple::image::ApngWriter apng;
+    int fps_num = int(std::lround(o.fps * 1000)), fps_den = 1000;
+    while (fps_num > 65535) fps_num /= 10, fps_den /= 10;
+    if (o.apng && !apng.open((o.out + "/anim.png").c_str(), std::max(fps_num, 1), fps_den, &error))
+        die(error);
+
+    const float duration = clip >= 0 ? asset.clips[clip].duration : 0.0f;
+    stipple::StageTimes times;
+    double frame_ms = 0, drawn = 0;
+    for (long f = 0; f < o.frames; ++f) {
+        float t = float(o.time0 + double(f) / o.fps);
+        if (duration > 0) t = std::fmod(std::fmod(t, duration) + duration, duration);
+        auto start = std::chrono::steady_clock::now();
+        stipple::pipeline_frame(pipeline.get(), clip, t, &times);
+        auto readback_start = std::chrono::steady_clock::now();
+        stipple::renderer_read_color(&pipeline->renderer, rgba.get());
+        auto end = std::chrono::steady_clock::now();
+        times.readback += std::chrono::duration<double, std::milli>(end - readback_start).count();
+        frame_ms += std::chrono::duration<double, std::milli>(end - start).count();
+        drawn += pipeline->points_drawn;
+        if (o.png && !stipple::image::write_png(frame_path(o, "frame", f, "png").c_str(), o.width,
+                                                o.height, rgba.get(), true, &error))
+            die(error);
+        if (o.apng && !apng.add_frame(o.width, o.height, rgba.get(), true, &error)) die(error);
+        if (o.dots_out) {
+            stipple::renderer_read_depth(&pipeline->renderer, depth_scratch.get(), depth.get());
+            if (!write_dots(*pipeline, depth.get(), frame_path(o, "dots", f, "csv")))
+                die("cannot write dots file in '" + o.out + "'");
+        }
+    }
+    if (o.apng && !apng.finish(&error)) die(error);
+
+    if (o.stats) {
+        const double n = double(o.frames);
+        std::printf(
+            "{\"asset\": \"%s\", \"backend\": \"%s\", \"renderer\": \"%s\", \"clip\": \"%s\", "
+            "\"frames\": %ld, \"width\": %d, \"height\": %d, \"points_total\": %u, "
+            "\"points_drawn\": %.1f, \"ms_per_frame\": %.3f, \"ms_per_stage\": {\"sample\": %.3f, "
+            "\"skin\": %.3f, \"place\": %.3f, \"relevance\": %.3f, \"size\": %.3f, \"draw\": %.3f, "
+            "\"readback\": %.3f}}\n",
+            o.asset.c_str(), stipple::platform::backend_name(context.backend),
+            context.renderer.c_str(), clip >= 0 ? asset.clips[clip].name : "(rest pose)",
+            o.frames, o.width, o.height, asset.points.point_count, drawn / n, frame_ms / n,
+            times.sample / n, times.skin / n, times.place / n, times.relevance / n, times.size / n,
+            times.draw / n, times.readback / n);
+    }
+    stipple::pipeline_destroy(pipeline.get());
+    stipple::platform::destroy_headless_context(&context);
+    return 0;
+}
