@@ -42,10 +42,15 @@ constexpr size_t kMaxZeroFilledElements = size_t(1) << 24;
 // RawScene::joints is uint16_t.
 constexpr size_t kMaxJoints = size_t(1) << 16;
 
-std::string str(size_t v) { return std::to_string(v); }
-std::string str(int v) { return std::to_string(v); }
+std::string str(size_t v) {
+    return std::to_string(v);
+}
+std::string str(int v) {
+    return std::to_string(v);
+}
 
-// First non-empty line of a (possibly multi-line) message, trimmed.
+// First non-empty line of a (possibly multi-line) message, trimmed, with bytes that are not
+// printable ASCII (tinygltf quotes raw input bytes) replaced by '?'.
 std::string first_line(const std::string& text) {
     size_t begin = 0;
     while (begin < text.size()) {
@@ -55,7 +60,11 @@ std::string first_line(const std::string& text) {
         const size_t a = line.find_first_not_of(" \t\r");
         if (a != std::string::npos) {
             const size_t b = line.find_last_not_of(" \t\r");
-            return line.substr(a, b - a + 1);
+            line = line.substr(a, b - a + 1);
+            for (char& c : line) {
+                if (c < 0x20 || c > 0x7e) c = '?';
+            }
+            return line;
         }
         begin = end + 1;
     }
@@ -305,7 +314,9 @@ bool read_accessor(const Model& model, int index, int type, unsigned formats, st
                " is not allowed here";
         return false;
     }
-    assert(type < TINYGLTF_TYPE_MAT2 || component_size(acc.componentType) == 4);
+    assert(
+        (type != TINYGLTF_TYPE_MAT2 && type != TINYGLTF_TYPE_MAT3 && type != TINYGLTF_TYPE_MAT4) ||
+        component_size(acc.componentType) == 4);
     if (acc.count == 0) {
         *err = label + ": count is 0";
         return false;
@@ -334,8 +345,8 @@ bool read_accessor(const Model& model, int index, int type, unsigned formats, st
         out->resize(acc.count * components);
         for (size_t i = 0; i < acc.count; ++i) {
             for (size_t c = 0; c < components; ++c) {
-                (*out)[i * components + c] = static_cast<T>(
-                    read_component(data + i * stride + c * csize, acc.componentType, acc.normalized));
+                (*out)[i * components + c] = static_cast<T>(read_component(
+                    data + i * stride + c * csize, acc.componentType, acc.normalized));
             }
         }
     }
@@ -343,8 +354,8 @@ bool read_accessor(const Model& model, int index, int type, unsigned formats, st
     if (acc.sparse.isSparse) {
         const auto& sparse = acc.sparse;
         if (sparse.count < 1 || size_t(sparse.count) > acc.count) {
-            *err = label + ": sparse count " + str(sparse.count) + " out of range (accessor count " +
-                   str(acc.count) + ")";
+            *err = label + ": sparse count " + str(sparse.count) +
+                   " out of range (accessor count " + str(acc.count) + ")";
             return false;
         }
         const int ict = sparse.indices.componentType;
@@ -461,7 +472,8 @@ bool read_node_transform(const tinygltf::Node& node, size_t index, RawNode* raw,
         *err = label + ": translation/rotation/scale must be 3/4/3 finite numbers";
         return false;
     }
-    for (size_t i = 0; i < node.translation.size(); ++i) raw->translation[i] = float(node.translation[i]);
+    for (size_t i = 0; i < node.translation.size(); ++i)
+        raw->translation[i] = float(node.translation[i]);
     for (size_t i = 0; i < node.scale.size(); ++i) raw->scale[i] = float(node.scale[i]);
     if (!node.rotation.empty()) {
         const glm::dvec4 r(node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]);
@@ -484,18 +496,18 @@ bool read_node_transform(const tinygltf::Node& node, size_t index, RawNode* raw,
 
 // One primitive's triangles, compacted to the vertices they use.
 struct Primitive {
-    std::vector<float> positions;    // 3 per vertex
-    std::vector<float> normals;      // 3 per vertex, unit
-    std::vector<uint32_t> indices;   // 3 per triangle, local
-    std::vector<uint16_t> joints;    // 4 per vertex, when skinned
-    std::vector<float> weights;      // 4 per vertex, when skinned
+    std::vector<float> positions;   // 3 per vertex
+    std::vector<float> normals;     // 3 per vertex, unit
+    std::vector<uint32_t> indices;  // 3 per triangle, local
+    std::vector<uint16_t> joints;   // 4 per vertex, when skinned
+    std::vector<float> weights;     // 4 per vertex, when skinned
     bool skinned = false;
 };
 
 struct MeshContext {
     const Model& model;
-    bool quantized;            // KHR_mesh_quantization is used: integer positions/normals
-    size_t skin_joint_count;   // joints of skin 0
+    bool quantized;           // KHR_mesh_quantization is used: integer positions/normals
+    size_t skin_joint_count;  // joints of skin 0
     std::vector<std::string>* warnings;
 };
 
@@ -525,8 +537,8 @@ bool read_skin_attributes(const MeshContext& ctx, const tinygltf::Primitive& pri
         const auto w = prim.attributes.find("WEIGHTS_" + str(set));
         if (j == prim.attributes.end() && w == prim.attributes.end()) break;
         if (j == prim.attributes.end() || w == prim.attributes.end()) {
-            *err = label + ": JOINTS_" + str(set) + " and WEIGHTS_" + str(set) +
-                   " must come together";
+            *err =
+                label + ": JOINTS_" + str(set) + " and WEIGHTS_" + str(set) + " must come together";
             return false;
         }
         std::vector<uint32_t> joints;
@@ -536,8 +548,8 @@ bool read_skin_attributes(const MeshContext& ctx, const tinygltf::Primitive& pri
             *err = label + " JOINTS_" + str(set) + ": " + sub;
             return false;
         }
-        if (!read_accessor(ctx.model, w->second, TINYGLTF_TYPE_VEC4, kF32 | kU8N | kU16N,
-                           &weights, &sub)) {
+        if (!read_accessor(ctx.model, w->second, TINYGLTF_TYPE_VEC4, kF32 | kU8N | kU16N, &weights,
+                           &sub)) {
             *err = label + " WEIGHTS_" + str(set) + ": " + sub;
             return false;
         }
@@ -760,8 +772,8 @@ bool read_primitive(const MeshContext& ctx, size_t mesh_index, size_t prim_index
         size_t repaired = 0;
         for (size_t v = 0; v < used.size(); ++v) {
             const float* nv = &normals[size_t(used[v]) * 3];
-            const double len = std::sqrt(double(nv[0]) * nv[0] + double(nv[1]) * nv[1] +
-                                         double(nv[2]) * nv[2]);
+            const double len =
+                std::sqrt(double(nv[0]) * nv[0] + double(nv[1]) * nv[1] + double(nv[2]) * nv[2]);
             if (all_finite(nv, 3) && len > 1e-12) {
                 for (int c = 0; c < 3; ++c) out->normals[v * 3 + c] = float(nv[c] / len);
             } else {
@@ -774,8 +786,7 @@ bool read_primitive(const MeshContext& ctx, size_t mesh_index, size_t prim_index
         }
     }
 
-    if (want_skin &&
-        !read_skin_attributes(ctx, prim, label, vertex_count, used, out, err)) {
+    if (want_skin && !read_skin_attributes(ctx, prim, label, vertex_count, used, out, err)) {
         return false;
     }
     return true;
@@ -844,9 +855,8 @@ bool read_channel(const Model& model, const tinygltf::Animation& anim,
     }
     // Rotations may be normalized integers (§3.11 "Animations", accessor table); translation
     // and scale are float.
-    const unsigned formats = out->path == RawPath::rotation
-                                 ? (kF32 | kI8N | kU8N | kI16N | kU16N)
-                                 : kF32;
+    const unsigned formats =
+        out->path == RawPath::rotation ? (kF32 | kI8N | kU8N | kI16N | kU16N) : kF32;
     const int type = components == 4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3;
     if (!read_accessor(model, sampler.output, type, formats, &values, &sub)) {
         *why = "output: " + sub;
@@ -915,10 +925,9 @@ std::vector<RawClip> read_clips(const Model& model, const std::vector<int32_t>& 
             }
             const std::pair<uint32_t, RawPath> target(channel.node, channel.path);
             if (std::find(targets.begin(), targets.end(), target) != targets.end()) {
-                warnings->push_back(channel_label + ": target node " +
-                                    str(anim.channels[c].target_node) + " '" +
-                                    anim.channels[c].target_path +
-                                    "' is already animated; channel skipped");
+                warnings->push_back(
+                    channel_label + ": target node " + str(anim.channels[c].target_node) + " '" +
+                    anim.channels[c].target_path + "' is already animated; channel skipped");
                 continue;
             }
             targets.push_back(target);
@@ -972,8 +981,11 @@ bool load_model(const std::string& path, Model* model, std::vector<std::string>*
         begin = end + 1;
     }
     if (!ok) {
-        const std::string why = first_line(terr);
-        *err = "not a valid glTF file: " + (why.empty() ? std::string("unknown error") : why);
+        std::string why = first_line(terr);
+        if (why.empty()) why = "unknown error";
+        // tinygltf may quote a whole data URI; keep the log line readable.
+        if (why.size() > 200) why = why.substr(0, 200) + "...";
+        *err = "not a valid glTF file: " + why;
         return false;
     }
     return true;
@@ -987,8 +999,9 @@ bool check_extensions(const Model& model, std::vector<std::string>* warnings, st
             *err = "required extension " + ext + " is unsupported (compressed geometry)";
             return false;
         }
-        const bool harmless = ext == "KHR_mesh_quantization" || ext.rfind("KHR_materials_", 0) == 0 ||
-                              ext.rfind("KHR_texture_", 0) == 0 || ext.rfind("EXT_texture_", 0) == 0;
+        const bool harmless =
+            ext == "KHR_mesh_quantization" || ext.rfind("KHR_materials_", 0) == 0 ||
+            ext.rfind("KHR_texture_", 0) == 0 || ext.rfind("EXT_texture_", 0) == 0;
         if (!harmless) {
             warnings->push_back("required extension " + ext +
                                 " is not supported; the geometry may be incomplete");
@@ -1116,8 +1129,9 @@ bool import_model(const Model& model, RawScene* scene, std::string* err) {
             skin_joints.push_back(uint32_t(out_index[size_t(joint)]));
         }
         if (!joints_in_scene) {
-            warnings.push_back("skin 0 is not used by the scene and its joints are not in it; "
-                               "skin ignored");
+            warnings.push_back(
+                "skin 0 is not used by the scene and its joints are not in it; "
+                "skin ignored");
             skin_joints.clear();
         } else {
             has_skin = true;
@@ -1206,12 +1220,12 @@ bool import_model(const Model& model, RawScene* scene, std::string* err) {
                     glm::dmat3(glm::cross(linear[1], linear[2]), glm::cross(linear[2], linear[0]),
                                glm::cross(linear[0], linear[1]));
                 for (size_t v = 0; v < count; ++v) {
-                    const glm::dvec4 pw = m * glm::dvec4(prim.positions[v * 3],
-                                                         prim.positions[v * 3 + 1],
-                                                         prim.positions[v * 3 + 2], 1.0);
-                    glm::dvec3 nw = cofactor * glm::dvec3(prim.normals[v * 3],
-                                                          prim.normals[v * 3 + 1],
-                                                          prim.normals[v * 3 + 2]);
+                    const glm::dvec4 pw =
+                        m * glm::dvec4(prim.positions[v * 3], prim.positions[v * 3 + 1],
+                                       prim.positions[v * 3 + 2], 1.0);
+                    glm::dvec3 nw =
+                        cofactor * glm::dvec3(prim.normals[v * 3], prim.normals[v * 3 + 1],
+                                              prim.normals[v * 3 + 2]);
                     if (det < 0.0) nw = -nw;
                     const double len = glm::length(nw);
                     nw = len > 1e-300 ? nw / len : glm::dvec3(0.0, 0.0, 1.0);

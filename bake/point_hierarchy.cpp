@@ -82,6 +82,14 @@ std::vector<uint32_t> weld(const RawScene& s, double eps, uint32_t* welded_count
     return remap;
 }
 
+// A bisection vertex's one-ring lies at about half the split edge L, but while one
+// generation of splits sweeps the mesh, the area per point falls from L^2/2 to L^2/4; its mean
+// over the generation, 2 ln 2 (L/2)^2, is what the point's region of influence should be.
+// Scaling the radius by sqrt(2 ln 2) makes bisection levels carry the same region per r^2 as
+// simplification levels, so tone does not jump where the two parts of the hierarchy meet.
+// (The runtime re-scales this radius with its neighbours' distances, Alg. 6.4.)
+const double kBisectionRadiusScale = std::sqrt(2.0 * std::log(2.0));
+
 struct Builder {
     const RawScene& scene;
     const HierarchyConfig& config;
@@ -237,7 +245,8 @@ struct Builder {
             mesh.split_copy(e, v);
             PointRecord& added = points.back();
             added.neighbours = one_ring(mesh, v);
-            added.radius = mean_distance(uint32_t(v.idx()), added.neighbours, mesh);
+            added.radius = kBisectionRadiusScale *
+                           mean_distance(uint32_t(v.idx()), added.neighbours, mesh);
             for (Mesh::VertexEdgeIter it = mesh.ve_iter(v); it.is_valid(); ++it)
                 heap.push({mesh.calc_edge_length(*it), it->idx()});
             size_t done = mesh.n_vertices() - start;

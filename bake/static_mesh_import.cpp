@@ -64,7 +64,7 @@ namespace {
 // informational streams are muted; everything is restored afterwards. Not thread-safe with
 // other OpenMesh I/O, like OpenMesh's streams themselves.
 class OpenMeshLogCapture {
-public:
+  public:
     OpenMeshLogCapture()
         : err_enabled_(omerr().is_enabled()),
           log_enabled_(omlog().is_enabled()),
@@ -100,7 +100,7 @@ public:
         return out;
     }
 
-private:
+  private:
     std::ostringstream captured_;
     bool had_cerr_ = false;
     bool err_enabled_;
@@ -158,7 +158,8 @@ bool read_static_mesh(const std::string& path, RawScene* scene, std::string* err
         *err = "no triangles found";
         return false;
     }
-    // Keep only the vertices the triangles use (isolated vertices are dropped).
+    // Keep only the vertices the triangles use: isolated vertices, and the spare copies
+    // OpenMesh makes when it repairs non-manifold faces, are dropped silently.
     constexpr uint32_t kUnused = std::numeric_limits<uint32_t>::max();
     std::vector<uint32_t> remap(mesh.n_vertices(), kUnused);
     for (uint32_t& index : triangles) {
@@ -175,11 +176,6 @@ bool read_static_mesh(const std::string& path, RawScene* scene, std::string* err
             }
         }
         index = slot;
-    }
-    const size_t isolated = mesh.n_vertices() - scene->positions.size() / 3;
-    if (isolated) {
-        scene->warnings.push_back(std::to_string(isolated) +
-                                  " vertices not used by any face dropped");
     }
     scene->indices = std::move(triangles);
     detail::compute_vertex_normals(scene->positions, scene->indices, &scene->normals);
@@ -209,6 +205,7 @@ bool import_static_mesh(const std::string& path, RawScene* out, std::string* err
         err = "out of memory";
     } catch (const std::exception& e) {
         err = std::string("mesh reader failed: ") + e.what();
+        std::replace(err.begin(), err.end(), '\n', ' ');
     } catch (...) {
         err = "mesh reader failed";
     }
@@ -224,7 +221,8 @@ bool import_static_mesh(const std::string& path, RawScene* out, std::string* err
 bool import_scene(const std::string& path, RawScene* out, std::string* error) {
     const std::string ext = lowercase_extension(path);
     if (ext == ".gltf" || ext == ".glb") return import_gltf(path, out, error);
-    if (ext == ".obj" || ext == ".ply" || ext == ".stl") return import_static_mesh(path, out, error);
+    if (ext == ".obj" || ext == ".ply" || ext == ".stl")
+        return import_static_mesh(path, out, error);
     *out = RawScene();
     if (error) {
         *error = path + ": unsupported file extension '" + ext +

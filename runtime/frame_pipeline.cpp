@@ -110,18 +110,23 @@ bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const Pipel
         !alloc(&p->skin_matrices, joints) || !alloc(&p->vertex_positions, verts * 3) ||
         !alloc(&p->vertex_normals, verts * 3) || !alloc(&p->point_positions, points * 3) ||
         !alloc(&p->point_normals, points * 3) || !alloc(&p->rest_radius, points) ||
-        !alloc(&p->radius, points) || !alloc(&p->size, points)) {
+        !alloc(&p->radius, points) || !alloc(&p->size, points) ||
+        !alloc(&p->radius_scale, points)) {
         std::snprintf(error, error_size, "out of memory for %zu points", points);
         return false;
     }
-    // Rest pose: camera bounds, and the radii used when relevance updates are off (they are
-    // the baked radii expressed in the same space as the posed mesh).
+    // Bind pose (the bake's space): how each baked radius relates to its neighbour distances.
+    place_points(asset.points, asset.mesh.indices, asset.mesh.positions, asset.mesh.normals,
+                 p->point_positions.get(), p->point_normals.get());
+    relevance_scale(asset.points, p->point_positions.get(), p->radius_scale.get());
+    // Rest pose: camera bounds, and the radii used when relevance updates are off (the baked
+    // radii expressed in the same space as the posed mesh).
     Clock::time_point clock = Clock::now();
     pose_mesh(p, -1, 0.0f, nullptr, &clock);
     place_points(asset.points, asset.mesh.indices, p->vertex_positions.get(),
                  p->vertex_normals.get(), p->point_positions.get(), p->point_normals.get());
-    recompute_relevance(asset.points, p->point_positions.get(), asset.points.radius,
-                        p->rest_radius.get());
+    recompute_relevance(asset.points, p->point_positions.get(), p->radius_scale.get(),
+                        asset.points.radius, p->rest_radius.get());
     setup_camera(p);
 
     RendererConfig rc;
@@ -144,8 +149,8 @@ void pipeline_frame(Pipeline* p, int clip, float time, StageTimes* t) {
     if (t) t->place += ms_since(&clock);
     const float* radius = p->rest_radius.get();
     if (p->config.relevance_update) {
-        recompute_relevance(a.points, p->point_positions.get(), p->rest_radius.get(),
-                            p->radius.get());
+        recompute_relevance(a.points, p->point_positions.get(), p->radius_scale.get(),
+                            p->rest_radius.get(), p->radius.get());
         radius = p->radius.get();
     }
     if (t) t->relevance += ms_since(&clock);

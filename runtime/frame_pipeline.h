@@ -45,6 +45,7 @@ struct Pipeline {
     std::unique_ptr<glm::mat4[]> skin_matrices; // joint_count
     std::unique_ptr<float[]> vertex_positions, vertex_normals;  // 3 * vertex_count
     std::unique_ptr<float[]> point_positions, point_normals;    // 3 * point_count
+    std::unique_ptr<float[]> radius_scale;  // point_count, see relevance_scale()
     std::unique_ptr<float[]> rest_radius, radius, size;         // point_count
     uint32_t points_drawn = 0;                                  // size > 0 in the last frame
 };

@@ -26,22 +26,42 @@ void place_points(const PointsView& points, const uint32_t* indices, const float
     }
 }
 
-void recompute_relevance(const PointsView& points, const float* point_positions,
-                         const float* fallback_radius, float* out_radius) {
+namespace {
+
+inline float mean_distance(const PointsView& points, const float* positions, uint32_t i) {
+    const uint32_t begin = points.neighbour_offsets[i], end = points.neighbour_offsets[i + 1];
+    if (begin == end) return 0.0f;
+    const float* p = positions + size_t(i) * 3;
+    float sum = 0.0f;
+    for (uint32_t k = begin; k < end; ++k) {
+        const float* q = positions + size_t(points.neighbours[k]) * 3;
+        const float dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2];
+        sum += std::sqrt(dx * dx + dy * dy + dz * dz);
+    }
+    return sum / float(end - begin);
+}
+
+}  // namespace
+
+void mean_neighbour_distance(const PointsView& points, const float* point_positions,
+                             float* out_distance) {
+    for (uint32_t i = 0; i < points.point_count; ++i)
+        out_distance[i] = mean_distance(points, point_positions, i);
+}
+
+void relevance_scale(const PointsView& points, const float* bind_point_positions,
+                     float* out_scale) {
     for (uint32_t i = 0; i < points.point_count; ++i) {
-        const uint32_t begin = points.neighbour_offsets[i], end = points.neighbour_offsets[i + 1];
-        if (begin == end) {
-            out_radius[i] = fallback_radius[i];
-            continue;
-        }
-        const float* p = point_positions + size_t(i) * 3;
-        float sum = 0.0f;
-        for (uint32_t k = begin; k < end; ++k) {
-            const float* q = point_positions + size_t(points.neighbours[k]) * 3;
-            float dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2];
-            sum += std::sqrt(dx * dx + dy * dy + dz * dz);
-        }
-        out_radius[i] = sum / float(end - begin);
+        const float d = mean_distance(points, bind_point_positions, i);
+        out_scale[i] = d > 0.0f ? points.radius[i] / d : 0.0f;
+    }
+}
+
+void recompute_relevance(const PointsView& points, const float* point_positions,
+                         const float* scale, const float* fallback_radius, float* out_radius) {
+    for (uint32_t i = 0; i < points.point_count; ++i) {
+        const float d = mean_distance(points, point_positions, i);
+        out_radius[i] = d > 0.0f ? scale[i] * d : fallback_radius[i];
     }
 }
 

@@ -13,10 +13,21 @@ namespace stipple {
 void place_points(const PointsView& points, const uint32_t* indices, const float* positions,
                   const float* normals, float* out_positions, float* out_normals);
 
-// Thesis Alg. 6.4: the relevance radius of every point, recomputed in the current pose as
-// the mean distance to its relevant neighbours (§4.5). Points without neighbours keep
-// `fallback_radius`.
+// Mean distance from each point to its relevant neighbours (§4.5) in the pose given by
+// point_positions; 0 for points without neighbours.
+void mean_neighbour_distance(const PointsView& points, const float* point_positions,
+                             float* out_distance);
+
+// Per-point factor radius / mean neighbour distance in the bake's (bind) pose, computed once
+// at load: 1 where the bake stored the plain mean distance, other values where it calibrated
+// the radius. Points without neighbours get 0.
+void relevance_scale(const PointsView& points, const float* bind_point_positions,
+                     float* out_scale);
+
+// Thesis Alg. 6.4: re-scales every point's relevance radius by how far its relevant
+// neighbours are now: radius = scale * mean neighbour distance in the current pose.
+// Points without neighbours keep `fallback_radius`.
 void recompute_relevance(const PointsView& points, const float* point_positions,
-                         const float* fallback_radius, float* out_radius);
+                         const float* scale, const float* fallback_radius, float* out_radius);
 
 }  // namespace stipple

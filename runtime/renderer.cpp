@@ -201,11 +201,11 @@ void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const flo
     const float far_depth[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     gl.ClearBufferfv(GL_COLOR, 0, background);
     gl.ClearBufferfv(GL_COLOR, 1, far_depth);
+    gl.DepthMask(GL_TRUE);  // the points pass leaves depth writes off; glClear obeys the mask
     gl.Clear(GL_DEPTH_BUFFER_BIT);
 
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_LESS);
-    gl.DepthMask(GL_TRUE);
     gl.Disable(GL_BLEND);
     gl.UseProgram(r->mesh_program);
     gl.UniformMatrix4fv(r->mesh_vp, 1, GL_FALSE, &view_projection[0][0]);

@@ -4,15 +4,21 @@
 
 namespace stipple {
 
+float smooth_slope_ink_fraction(float s) {
+    if (s <= 1.0001f) return 1.0f;
+    return 1.0f / s + (s - 2.0f * std::log(s) - 1.0f / s) / ((s - 1.0f) * (s - 1.0f));
+}
+
 void size_stipples(uint32_t count, const float* positions, const float* normals,
                    const float* radius, const SizeParams& params, float* out_size) {
     // Pixels per world unit at clip depth w is focal / w, with focal = P[1][1] * H / 2.
-    // view_projection row 3 gives w; row 1's scale is folded into `focal` via the caller's
-    // projection, so we take |row1| of view_projection directly.
+    // Row 3 of view_projection gives w; row 1 is P[1][1] times the view's unit up axis, so
+    // its length is P[1][1].
     const glm::mat4& m = params.view_projection;
     const glm::vec4 row_w(m[0][3], m[1][3], m[2][3], m[3][3]);
     const float focal = glm::length(glm::vec3(m[0][1], m[1][1], m[2][1])) * params.viewport_height * 0.5f;
     const glm::vec3 l = params.light_direction;
+    const float tone_gain = 1.0f / smooth_slope_ink_fraction(params.smooth_slope);
     for (uint32_t i = 0; i < count; ++i) {
         const glm::vec3 p(positions[i * 3], positions[i * 3 + 1], positions[i * 3 + 2]);
         const glm::vec3 n(normals[i * 3], normals[i * 3 + 1], normals[i * 3 + 2]);
@@ -30,7 +36,7 @@ void size_stipples(uint32_t count, const float* positions, const float* normals,
             const float lit = std::fmax(glm::dot(n, l), 0.0f);
             tone = params.dark_tone + (params.light_tone - params.dark_tone) * lit;
         }
-        out_size[i] = smooth_point_size(tone, region_px, params.max_point_size, params.smooth_slope);
+        out_size[i] = smooth_point_size(tone * tone_gain, region_px, params.max_point_size, params.smooth_slope);
     }
 }
 

@@ -18,9 +18,17 @@ struct SizeParams {
     float light_tone = 0.0f;                // target tone where N.L = 1
 };
 
-// Area of a point's region of influence per squared relevance radius: points spaced r
-// apart on a surface each own a hexagonal cell of sqrt(3)/2 r^2.
-constexpr float kRegionPerRadiusSquared = 0.8660254f;
+// Area of a point's region of influence per squared relevance radius. Measured on baked
+// hierarchies (surface area / number of points at a level, over r^2 of the level's last
+// point): 0.98-1.08 for simplification levels of CesiumMan; the bake scales bisection radii
+// to match (bake/point_hierarchy.cpp).
+constexpr float kRegionPerRadiusSquared = 1.0f;
+
+// Alg. 3.2 draws points whose tone ratio lies in [1, smoothSlope] at partial size, so on an
+// evenly spread hierarchy (region of the i-th point = A / i) the ink laid down is
+// f(s) * targetTone with f(s) = 1/s + (s - 2 ln s - 1/s) / (s - 1)^2 (0.614 for s = 2).
+// size_stipples divides the target tone by f(s) so the drawn tone matches the target.
+float smooth_slope_ink_fraction(float smooth_slope);
 
 // Thesis Alg. 3.2 (smooth point rendering) for one point: the diameter in pixels, from its
 // target tone and the screen area of its region of influence.
@@ -34,7 +42,8 @@ inline float smooth_point_size(float target_tone, float region_px, float max_poi
     return s * max_point_size;
 }
 
-// Sizes every point: target tone (constant, or Lambert from one directional light), the
+// Sizes every point: target tone (constant, or Lambert from one directional light, divided
+// by smooth_slope_ink_fraction), the
 // region of influence projected to the screen (§3.1.1: radius times pixels per unit at the
 // point's depth, squared) and reduced by the slope factor N.V (§3.1.2), then Alg. 3.2.
 // Back-facing points get size 0.

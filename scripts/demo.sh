@@ -6,5 +6,5 @@ cd "$(dirname "$0")/.."
 ./scripts/setup.sh
 mkdir -p out
 build/bin/stipple-bake assets/CesiumMan/CesiumMan.glb -o out/CesiumMan.stip --points 60000
-build/bin/stipple-play out/CesiumMan.stip --out out --frames 60 --fps 30 --size 640x480 --stats
+build/bin/stipple-play out/CesiumMan.stip --out out --frames 60 --fps 30 --size 640x480 --yaw -60 --stats
 echo "frames in out/frame_*.png, animation in out/anim.png"

@@ -2,6 +2,7 @@
 // recompute (Alg. 6.4) and the smooth size rule (Alg. 3.2) with the slope factor.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "runtime/point_placement.h"
@@ -56,14 +57,24 @@ TEST(Relevance, RecomputedAsMeanDistanceToNeighboursInCurrentPose) {
     pv.point_count = 3;
     pv.neighbour_offsets = offsets;
     pv.neighbours = neighbours;
+    const float one[] = {1, 1, 1};
     float radius[3];
-    stipple::recompute_relevance(pv, positions, fallback, radius);
+    stipple::recompute_relevance(pv, positions, one, fallback, radius);
     EXPECT_FLOAT_EQ(radius[0], 2.0f);
     EXPECT_FLOAT_EQ(radius[1], 7.0f);  // no neighbours: keeps its fallback
     // Stretching x by 4 moves neighbour 1 to distance 4: radius (4 + 3) / 2.
     const float stretched[] = {0, 0, 0, 4, 0, 0, 0, 3, 0};
-    stipple::recompute_relevance(pv, stretched, fallback, radius);
+    stipple::recompute_relevance(pv, stretched, one, fallback, radius);
     EXPECT_FLOAT_EQ(radius[0], 3.5f);
+    // A calibrated baked radius (3 where the bind-pose mean distance is 2) scales with it.
+    float baked[3] = {3, 0, 0};
+    pv.radius = baked;
+    float scale[3];
+    stipple::relevance_scale(pv, positions, scale);
+    EXPECT_FLOAT_EQ(scale[0], 1.5f);
+    EXPECT_FLOAT_EQ(scale[1], 0.0f);
+    stipple::recompute_relevance(pv, stretched, scale, fallback, radius);
+    EXPECT_FLOAT_EQ(radius[0], 5.25f);
 }
 
 TEST(SmoothPointSize, FollowsAlgorithm32) {
@@ -84,6 +95,21 @@ TEST(SmoothPointSize, FollowsAlgorithm32) {
     EXPECT_FLOAT_EQ(stipple::smooth_point_size(0.0f, 1e6f, max_size, slope), 0.0f);
 }
 
+TEST(SmoothPointSize, InkFractionMatchesNumericIntegral) {
+    // Integrate the ink of Alg. 3.2 over an evenly spread hierarchy numerically.
+    const float s = 2.0f;
+    double ink = 0;
+    const int n = 200000;
+    for (int i = 1; i <= n; ++i) {
+        double x = (i - 0.5) / n;  // index / N
+        double size = std::min(std::max((1.0 / x - 1.0) / (s - 1.0), 0.0), 1.0);
+        ink += size * size / n;
+    }
+    EXPECT_NEAR(stipple::smooth_slope_ink_fraction(s), ink, 1e-4);
+    EXPECT_NEAR(stipple::smooth_slope_ink_fraction(2.0f), 0.6137, 1e-3);
+    EXPECT_NEAR(stipple::smooth_slope_ink_fraction(1.0f), 1.0f, 1e-6);
+}
+
 TEST(SizeStipples, SlopeFactorAndBackFacesAndScreenScale) {
     // Identity camera looking down -z from the origin is awkward; use a simple view-projection:
     // orthographic-like scale with w = 1 so pixels per unit = |row1| * H / 2.
@@ -92,7 +118,8 @@ TEST(SizeStipples, SlopeFactorAndBackFacesAndScreenScale) {
     params.view_projection[1][1] = 0.1f;  // 0.1 NDC per unit -> 0.1 * 480 / 2 = 24 px per unit
     params.eye = glm::vec3(0, 0, 10);
     params.viewport_height = 480;
-    params.constant_tone = 0.3f;
+    // size_stipples compensates Alg. 3.2's partial dots: tone 0.3 * f(2) targets ratio 0.3.
+    params.constant_tone = 0.3f * stipple::smooth_slope_ink_fraction(2.0f);
     const float positions[] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     const float c60 = 0.5f;  // cos 60 degrees
     const float normals[] = {0, 0, 1, std::sqrt(1 - c60 * c60), 0, c60, 0, 0, -1};

@@ -152,7 +152,7 @@ bool write_dots(const stipple::Pipeline& p, const float* depth, const std::strin
         int px = int(std::floor(s.x)), py = int(std::floor(s.y));
         if (px < 0 || py < 0 || px >= w || py >= h) continue;
         float mesh_depth = depth[size_t(h - 1 - py) * size_t(w) + size_t(px)];
-        if (s.z > mesh_depth + 1e-5f) continue;
+        if (mesh_depth >= 1.0f || s.z > mesh_depth + 1e-5f) continue;  // off the object or hidden
         std::fprintf(f, "%u,%.2f,%.2f,%.3f\n", i, double(s.x), double(s.y), double(p.size[i]));
     }
     return std::fclose(f) == 0;
