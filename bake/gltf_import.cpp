@@ -463,31 +463,39 @@ bool read_node_transform(const tinygltf::Node& node, size_t index, RawNode* raw,
         }
         std::string problem;
         if (!decompose_trs(*local, raw, &problem)) warnings->push_back(label + ": " + problem);
-        return true;
-    }
-    if ((!node.translation.empty() && node.translation.size() != 3) ||
-        (!node.rotation.empty() && node.rotation.size() != 4) ||
-        (!node.scale.empty() && node.scale.size() != 3) || !finite(node.translation) ||
-        !finite(node.rotation) || !finite(node.scale)) {
+    } else if ((!node.translation.empty() && node.translation.size() != 3) ||
+               (!node.rotation.empty() && node.rotation.size() != 4) ||
+               (!node.scale.empty() && node.scale.size() != 3) || !finite(node.translation) ||
+               !finite(node.rotation) || !finite(node.scale)) {
         *err = label + ": translation/rotation/scale must be 3/4/3 finite numbers";
         return false;
-    }
-    for (size_t i = 0; i < node.translation.size(); ++i)
-        raw->translation[i] = float(node.translation[i]);
-    for (size_t i = 0; i < node.scale.size(); ++i) raw->scale[i] = float(node.scale[i]);
-    if (!node.rotation.empty()) {
-        const glm::dvec4 r(node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]);
-        const double len = glm::length(r);
-        if (!(len > 1e-6)) {
-            *err = label + ": rotation is not a unit quaternion";
-            return false;
+    } else {
+        for (size_t i = 0; i < node.translation.size(); ++i) {
+            raw->translation[i] = float(node.translation[i]);
         }
-        for (int i = 0; i < 4; ++i) raw->rotation[i] = float(r[i] / len);
+        for (size_t i = 0; i < node.scale.size(); ++i) raw->scale[i] = float(node.scale[i]);
+        if (!node.rotation.empty()) {
+            const glm::dvec4 r(node.rotation[0], node.rotation[1], node.rotation[2],
+                               node.rotation[3]);
+            const double len = glm::length(r);
+            if (!(len > 1e-6)) {
+                *err = label + ": rotation is not a unit quaternion";
+                return false;
+            }
+            for (int i = 0; i < 4; ++i) raw->rotation[i] = float(r[i] / len);
+        }
+        const glm::dquat q(raw->rotation[3], raw->rotation[0], raw->rotation[1], raw->rotation[2]);
+        *local = glm::mat4_cast(q);
+        for (int c = 0; c < 3; ++c) (*local)[c] *= double(raw->scale[c]);
+        (*local)[3] =
+            glm::dvec4(raw->translation[0], raw->translation[1], raw->translation[2], 1.0);
     }
-    const glm::dquat q(raw->rotation[3], raw->rotation[0], raw->rotation[1], raw->rotation[2]);
-    *local = glm::mat4_cast(q);
-    for (int c = 0; c < 3; ++c) (*local)[c] *= double(raw->scale[c]);
-    (*local)[3] = glm::dvec4(raw->translation[0], raw->translation[1], raw->translation[2], 1.0);
+    // Finite doubles can still overflow the floats the runtime uses.
+    if (!all_finite(raw->translation, 3) || !all_finite(raw->rotation, 4) ||
+        !all_finite(raw->scale, 3)) {
+        *err = label + ": transform exceeds the float range";
+        return false;
+    }
     return true;
 }
 
@@ -960,7 +968,8 @@ bool load_model(const std::string& path, Model* model, std::vector<std::string>*
         *err = "cannot open file";
         return false;
     }
-    // GLB starts with the magic "glTF" (§4.4.1 "Header"); anything else is tried as JSON.
+    // GLB starts with the magic "glTF" (§4 "GLB File Format Specification", header); anything
+    // else is tried as JSON.
     char magic[4] = {};
     file.read(magic, 4);
     const bool binary = file.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0;

@@ -219,6 +219,7 @@ bool import_static_mesh(const std::string& path, RawScene* out, std::string* err
 }
 
 bool import_scene(const std::string& path, RawScene* out, std::string* error) {
+    assert(out != nullptr);
     const std::string ext = lowercase_extension(path);
     if (ext == ".gltf" || ext == ".glb") return import_gltf(path, out, error);
     if (ext == ".obj" || ext == ".ply" || ext == ".stl")

@@ -2,6 +2,7 @@
 // measure tone inside the object's silhouette.
 #pragma once
 #include <stb/stb_image.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -16,11 +17,13 @@ inline std::string bin(const char* name) { return std::string(STIPPLE_BIN_DIR) +
 inline std::string source(const char* path) { return std::string(STIPPLE_SOURCE_DIR) + "/" + path; }
 
 // Runs a command line; returns its exit status (stdout/stderr go to `log` if given).
+// The log file is per process: ctest runs tests in parallel processes.
 inline int run(const std::string& command, std::string* log = nullptr) {
-    std::string full = command + " > /tmp/stipple_test_cmd.log 2>&1";
+    const std::string log_path = "/tmp/stipple_test_cmd_" + std::to_string(getpid()) + ".log";
+    std::string full = command + " > " + log_path + " 2>&1";
     int status = std::system(full.c_str());
     if (log) {
-        std::ifstream f("/tmp/stipple_test_cmd.log");
+        std::ifstream f(log_path);
         std::stringstream ss;
         ss << f.rdbuf();
         *log = ss.str();

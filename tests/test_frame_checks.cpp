@@ -16,8 +16,11 @@ class FrameChecks : public ::testing::Test {
   protected:
     static std::string dir;
 
+    static void TearDownTestSuite() { run("rm -rf " + dir); }
+
     static void SetUpTestSuite() {
-        dir = ::testing::TempDir() + "stipple_frame_checks";
+        // Per process: ctest runs each test in its own process, possibly in parallel.
+        dir = ::testing::TempDir() + "stipple_frame_checks_" + std::to_string(getpid());
         run("rm -rf " + dir + " && mkdir -p " + dir);
         ASSERT_EQ(run(bin("stipple-bake") + " " + source("assets/CesiumMan/CesiumMan.glb") + " -o " +
                       dir + "/cesium.stip --points 60000 --quiet"),
