@@ -59,26 +59,26 @@ void compute_vertex_normals(const std::vector<float>& positions,
 
 namespace {
 
-// OpenMesh reports through the global streams omerr/omlog/omout. While a file is read,
-// omerr is redirected into a string (its messages become warnings or the error) and the
-// informational streams are muted; everything is restored afterwards. Not thread-safe with
-// other OpenMesh I/O, like OpenMesh's streams themselves.
+// OpenMesh reports through its global streams: omerr writes to std::cerr, omlog and omout
+// are informational. While a capture is alive, std::cerr's buffer is swapped for a string
+// (omerr's messages become warnings or the error) and omlog/omout are muted; everything is
+// restored afterwards. OpenMesh's own stream wiring is left alone: mostream::disconnect
+// does not free the target it removes, so rewiring it per read would leak. Not thread-safe
+// with other users of std::cerr or OpenMesh I/O.
 class OpenMeshLogCapture {
   public:
     OpenMeshLogCapture()
-        : err_enabled_(omerr().is_enabled()),
+        : previous_(std::cerr.rdbuf(captured_.rdbuf())),
+          err_enabled_(omerr().is_enabled()),
           log_enabled_(omlog().is_enabled()),
           out_enabled_(omout().is_enabled()) {
-        had_cerr_ = omerr().disconnect(std::cerr);
-        omerr().connect(captured_);
         omerr().enable();
         omlog().disable();
         omout().disable();
     }
     ~OpenMeshLogCapture() {
         omerr().flush();
-        omerr().disconnect(captured_);
-        if (had_cerr_) omerr().connect(std::cerr);
+        std::cerr.rdbuf(previous_);
         if (!err_enabled_) omerr().disable();
         if (log_enabled_) omlog().enable();
         if (out_enabled_) omout().enable();
@@ -102,7 +102,7 @@ class OpenMeshLogCapture {
 
   private:
     std::ostringstream captured_;
-    bool had_cerr_ = false;
+    std::streambuf* previous_;
     bool err_enabled_;
     bool log_enabled_;
     bool out_enabled_;
