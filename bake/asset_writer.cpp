@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "bake/silhouette_edges.h"
 #include "runtime/asset_format.h"
 
 namespace stipple::bake {
@@ -110,6 +111,14 @@ std::vector<uint8_t> neighbours_section(const PointHierarchy& p) {
     return b.v;
 }
 
+std::vector<uint8_t> edges_section(const RawScene& s) {
+    std::vector<uint32_t> edges = silhouette_edges(s);
+    Bytes b;
+    b.u32(uint32_t(edges.size() / 4));
+    b.put(edges);
+    return b.v;
+}
+
 }  // namespace
 
 std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points) {
@@ -125,6 +134,7 @@ std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& p
     }
     sections.push_back({format::kTagPoints, points_section(points)});
     sections.push_back({format::kTagNeighbours, neighbours_section(points)});
+    sections.push_back({format::kTagEdges, edges_section(scene)});
 
     std::vector<format::SectionEntry> table(sections.size());
     uint64_t offset = sizeof(format::FileHeader) + table.size() * sizeof(format::SectionEntry);

@@ -206,6 +206,22 @@ LoadStatus parse_neighbours(Reader r, PointsView* p) {
     return {};
 }
 
+LoadStatus parse_edges(Reader r, const MeshView& m, EdgesView* e) {
+    e->edge_count = r.u32();
+    e->edges = r.take<uint32_t>(size_t(e->edge_count) * 4);
+    if (!r.ok || r.at != r.size)
+        return fail(LoadError::malformed_section, "EDGE: size does not match %u edges",
+                    e->edge_count);
+    for (uint32_t i = 0; i < e->edge_count; ++i) {
+        const uint32_t* x = e->edges + size_t(i) * 4;
+        if (x[0] >= m.vertex_count || x[1] >= m.vertex_count || x[2] >= m.triangle_count ||
+            (x[3] >= m.triangle_count && x[3] != format::kNoFace))
+            return fail(LoadError::out_of_range, "EDGE: edge %u (%u, %u, faces %u, %u) out of range",
+                        i, x[0], x[1], x[2], x[3]);
+    }
+    return {};
+}
+
 const format::SectionEntry* find_section(const format::SectionEntry* table, uint32_t count,
                                          uint32_t tag) {
     for (uint32_t i = 0; i < count; ++i)
@@ -243,10 +259,10 @@ LoadStatus parse(const uint8_t* bytes, size_t size, Asset* a) {
         if (format::crc32(bytes + s.offset, s.size) != s.crc)
             return fail(LoadError::checksum_mismatch, "%s: checksum mismatch (corrupted asset)", tag);
     }
-    const uint32_t tags[5] = {format::kTagMesh, format::kTagSkin, format::kTagClips,
-                              format::kTagPoints, format::kTagNeighbours};
-    const format::SectionEntry* sec[5];
-    for (int i = 0; i < 5; ++i) {
+    const uint32_t tags[6] = {format::kTagMesh,   format::kTagSkin,       format::kTagClips,
+                              format::kTagPoints, format::kTagNeighbours, format::kTagEdges};
+    const format::SectionEntry* sec[6];
+    for (int i = 0; i < 6; ++i) {
         sec[i] = find_section(table, h.section_count, tags[i]);
         a->section_size[i] = sec[i] ? sec[i]->size : 0;
     }
@@ -265,6 +281,7 @@ LoadStatus parse(const uint8_t* bytes, size_t size, Asset* a) {
     if (st.ok() && sec[2]) st = parse_clips(reader(sec[2]), a->skin.skeleton.node_count, a);
     if (st.ok()) st = parse_points(reader(sec[3]), a->mesh.triangle_count, &a->points);
     if (st.ok()) st = parse_neighbours(reader(sec[4]), &a->points);
+    if (st.ok() && sec[5]) st = parse_edges(reader(sec[5]), a->mesh, &a->edges);
     return st;
 }
 

@@ -52,6 +52,13 @@ struct PointsView {
     uint32_t neighbour_count = 0;
 };
 
+// Edge adjacency for silhouettes: 4 entries per edge (vertex a, vertex b, face 0, face 1 or
+// format::kNoFace on a boundary).
+struct EdgesView {
+    uint32_t edge_count = 0;
+    const uint32_t* edges = nullptr;
+};
+
 struct SkinView {
     anim::Skeleton skeleton = {};
     const uint16_t* joints = nullptr;  // 4 per vertex, each < joint_count
@@ -61,12 +68,13 @@ struct SkinView {
 struct Asset {
     MeshView mesh;
     PointsView points;
+    EdgesView edges;  // empty if the asset has no EDGE section
     bool skinned = false;
     SkinView skin;
     uint32_t clip_count = 0;
     const anim::Clip* clips = nullptr;
     size_t file_size = 0;
-    size_t section_size[5] = {};  // MESH, SKIN, CLIP, PNTS, NBRS bytes (0 if absent)
+    size_t section_size[6] = {};  // MESH, SKIN, CLIP, PNTS, NBRS, EDGE bytes (0 if absent)
 
     // Owned storage: the file bytes and the clip/channel tables built from them.
     std::unique_ptr<uint8_t[]> storage;

@@ -21,6 +21,8 @@ constexpr uint32_t kTagSkin = fourcc('S', 'K', 'I', 'N');
 constexpr uint32_t kTagClips = fourcc('C', 'L', 'I', 'P');
 constexpr uint32_t kTagPoints = fourcc('P', 'N', 'T', 'S');
 constexpr uint32_t kTagNeighbours = fourcc('N', 'B', 'R', 'S');
+constexpr uint32_t kTagEdges = fourcc('E', 'D', 'G', 'E');
+constexpr uint32_t kNoFace = 0xFFFFFFFFu;  // second face of a boundary edge
 
 struct FileHeader {         // 32 bytes at offset 0
     char magic[4];

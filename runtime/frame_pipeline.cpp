@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "runtime/point_placement.h"
+#include "runtime/silhouette.h"
 
 namespace stipple {
 
@@ -111,7 +112,9 @@ bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const Pipel
         !alloc(&p->vertex_normals, verts * 3) || !alloc(&p->point_positions, points * 3) ||
         !alloc(&p->point_normals, points * 3) || !alloc(&p->rest_radius, points) ||
         !alloc(&p->radius, points) || !alloc(&p->size, points) ||
-        !alloc(&p->radius_scale, points)) {
+        !alloc(&p->radius_scale, points) ||
+        !alloc(&p->triangle_front, asset.mesh.triangle_count) ||
+        !alloc(&p->lines, size_t(asset.edges.edge_count) * 6)) {
         std::snprintf(error, error_size, "out of memory for %zu points", points);
         return false;
     }
@@ -134,6 +137,8 @@ bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const Pipel
     rc.height = config.height;
     rc.max_points = asset.points.point_count;
     rc.vertex_count = asset.mesh.vertex_count;
+    rc.max_lines = asset.edges.edge_count;
+    rc.line_width = config.line_width;
     rc.indices = asset.mesh.indices;
     rc.triangle_count = asset.mesh.triangle_count;
     std::memcpy(rc.background, config.background, sizeof(rc.background));
@@ -160,8 +165,17 @@ void pipeline_frame(Pipeline* p, int clip, float time, StageTimes* t) {
     for (uint32_t i = 0; i < a.points.point_count; ++i) drawn += p->size[i] > 0.0f;
     p->points_drawn = drawn;
     if (t) t->size += ms_since(&clock);
+    p->lines_drawn = 0;
+    if (p->config.silhouettes && a.edges.edge_count > 0) {
+        triangle_facing(a.mesh.triangle_count, a.mesh.indices, p->vertex_positions.get(),
+                        p->size_params.eye, p->triangle_front.get());
+        p->lines_drawn = silhouette_lines(a.edges, p->triangle_front.get(),
+                                          p->vertex_positions.get(), p->lines.get());
+    }
+    if (t) t->silhouette += ms_since(&clock);
     renderer_draw_mesh(&p->renderer, p->view_projection, p->vertex_positions.get(),
                        a.mesh.vertex_count);
+    renderer_draw_lines(&p->renderer, p->view_projection, p->lines.get(), p->lines_drawn);
     renderer_draw_points(&p->renderer, p->view_projection, p->point_positions.get(),
                          p->size.get(), a.points.point_count);
     p->renderer.gl.Finish();

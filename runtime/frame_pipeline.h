@@ -1,6 +1,7 @@
 // One frame of animated stippling as a pipeline of plain stages over flat arrays
 // (thesis Alg. 6.4 wrapped around Alg. 3.2):
-//   sample clip -> skin mesh -> place points -> recompute relevance -> size -> draw.
+//   sample clip -> skin mesh -> place points -> recompute relevance -> size
+//   -> silhouette edges -> draw.
 // Every buffer is allocated in pipeline_init from the asset's counts; a frame allocates
 // nothing.
 #pragma once
@@ -27,10 +28,13 @@ struct PipelineConfig {
     float max_point_size = 3.0f;
     float smooth_slope = 2.0f;
     float background[3] = {1.0f, 1.0f, 1.0f};
+    bool silhouettes = true;    // draw silhouette lines (needs the asset's EDGE section)
+    float line_width = 1.0f;    // silhouette width in pixels
 };
 
 struct StageTimes {  // milliseconds
-    double sample = 0, skin = 0, place = 0, relevance = 0, size = 0, draw = 0, readback = 0;
+    double sample = 0, skin = 0, place = 0, relevance = 0, size = 0, silhouette = 0, draw = 0,
+           readback = 0;
 };
 
 struct Pipeline {
@@ -47,7 +51,10 @@ struct Pipeline {
     std::unique_ptr<float[]> point_positions, point_normals;    // 3 * point_count
     std::unique_ptr<float[]> radius_scale;  // point_count, see relevance_scale()
     std::unique_ptr<float[]> rest_radius, radius, size;         // point_count
+    std::unique_ptr<uint8_t[]> triangle_front;                  // triangle_count
+    std::unique_ptr<float[]> lines;                             // 6 * edge_count
     uint32_t points_drawn = 0;                                  // size > 0 in the last frame
+    uint32_t lines_drawn = 0;                                   // silhouette lines
 };
 
 bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const PipelineConfig& config,

@@ -61,7 +61,9 @@ namespace stipple {
     X(PFNGLREADBUFFERPROC, ReadBuffer)                                                       \
     X(PFNGLREADPIXELSPROC, ReadPixels)                                                       \
     X(PFNGLPIXELSTOREIPROC, PixelStorei)                                                     \
-    X(PFNGLFINISHPROC, Finish)
+    X(PFNGLFINISHPROC, Finish)                                                               \
+    X(PFNGLLINEWIDTHPROC, LineWidth)                                                         \
+    X(PFNGLGETFLOATVPROC, GetFloatv)
 
 struct GlApi {
 #define STIPPLE_GL_MEMBER(type, name) type name = nullptr;

@@ -66,6 +66,19 @@ void main() {
 }
 )";
 
+const char* kLineVs = R"(#version 300 es
+layout(location = 0) in vec3 a_position;
+uniform mat4 u_view_projection;
+void main() { gl_Position = u_view_projection * vec4(a_position, 1.0); }
+)";
+
+const char* kLineFs = R"(#version 300 es
+precision highp float;
+uniform vec4 u_ink;
+layout(location = 0) out vec4 o_color;
+void main() { o_color = vec4(u_ink.rgb, 1.0); }
+)";
+
 GLuint compile(const GlApi& gl, GLenum type, const char* source, char* error, size_t size) {
     GLuint s = gl.CreateShader(type);
     gl.ShaderSource(s, 1, &source, nullptr);
@@ -153,7 +166,8 @@ bool renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config, c
 
     r->mesh_program = link(gl, kMeshVs, kMeshFs, error, error_size);
     r->point_program = r->mesh_program ? link(gl, kPointVs, kPointFs, error, error_size) : 0;
-    if (!r->point_program) {
+    r->line_program = r->point_program ? link(gl, kLineVs, kLineFs, error, error_size) : 0;
+    if (!r->line_program) {
         renderer_destroy(r);
         return false;
     }
@@ -162,6 +176,8 @@ bool renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config, c
     r->mesh_paper = gl.GetUniformLocation(r->mesh_program, "u_paper");
     r->point_vp = gl.GetUniformLocation(r->point_program, "u_view_projection");
     r->point_ink = gl.GetUniformLocation(r->point_program, "u_ink");
+    r->line_vp = gl.GetUniformLocation(r->line_program, "u_view_projection");
+    r->line_ink = gl.GetUniformLocation(r->line_program, "u_ink");
 
     gl.GenVertexArrays(1, &r->mesh_vao);
     gl.BindVertexArray(r->mesh_vao);
@@ -175,6 +191,10 @@ bool renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config, c
     gl.BindVertexArray(r->point_vao);
     r->point_pos_vbo = dynamic_buffer(gl, 0, 3, size_t(config.max_points) * 12);
     r->point_size_vbo = dynamic_buffer(gl, 1, 1, size_t(config.max_points) * 4);
+
+    gl.GenVertexArrays(1, &r->line_vao);
+    gl.BindVertexArray(r->line_vao);
+    r->line_vbo = dynamic_buffer(gl, 0, 3, size_t(config.max_lines) * 24);
     gl.BindVertexArray(0);
 
     if (gl.desktop) {
@@ -238,6 +258,30 @@ void renderer_draw_points(Renderer* r, const glm::mat4& view_projection, const f
     gl.BindVertexArray(0);
 }
 
+void renderer_draw_lines(Renderer* r, const glm::mat4& view_projection, const float* lines,
+                         uint32_t line_count) {
+    const GlApi& gl = r->gl;
+    if (line_count == 0) return;
+    const GLenum first[1] = {GL_COLOR_ATTACHMENT0};
+    gl.DrawBuffers(1, first);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LEQUAL);
+    gl.DepthMask(GL_FALSE);
+    gl.Disable(GL_BLEND);
+    float range[2] = {1.0f, 1.0f};
+    gl.GetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, range);
+    float width = r->config.line_width;
+    gl.LineWidth(width < range[0] ? range[0] : (width > range[1] ? range[1] : width));
+    gl.UseProgram(r->line_program);
+    gl.UniformMatrix4fv(r->line_vp, 1, GL_FALSE, &view_projection[0][0]);
+    gl.Uniform4f(r->line_ink, r->config.ink[0], r->config.ink[1], r->config.ink[2], 1.0f);
+    gl.BindVertexArray(r->line_vao);
+    gl.BindBuffer(GL_ARRAY_BUFFER, r->line_vbo);
+    gl.BufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(line_count) * 24), lines);
+    gl.DrawArrays(GL_LINES, 0, GLsizei(line_count * 2));
+    gl.BindVertexArray(0);
+}
+
 void renderer_read_color(Renderer* r, uint8_t* rgba) {
     const GlApi& gl = r->gl;
     gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
@@ -260,12 +304,14 @@ void renderer_read_depth(Renderer* r, float* scratch, float* depth) {
 void renderer_destroy(Renderer* r) {
     const GlApi& gl = r->gl;
     if (!gl.DeleteBuffers) return;
-    GLuint buffers[4] = {r->mesh_vbo, r->mesh_ibo, r->point_pos_vbo, r->point_size_vbo};
-    gl.DeleteBuffers(4, buffers);
-    GLuint vaos[2] = {r->mesh_vao, r->point_vao};
-    gl.DeleteVertexArrays(2, vaos);
+    GLuint buffers[5] = {r->mesh_vbo, r->mesh_ibo, r->point_pos_vbo, r->point_size_vbo,
+                         r->line_vbo};
+    gl.DeleteBuffers(5, buffers);
+    GLuint vaos[3] = {r->mesh_vao, r->point_vao, r->line_vao};
+    gl.DeleteVertexArrays(3, vaos);
     if (r->mesh_program) gl.DeleteProgram(r->mesh_program);
     if (r->point_program) gl.DeleteProgram(r->point_program);
+    if (r->line_program) gl.DeleteProgram(r->line_program);
     GLuint rbs[3] = {r->color_rb, r->depth_copy_rb, r->depth_rb};
     gl.DeleteRenderbuffers(3, rbs);
     if (r->fbo) gl.DeleteFramebuffers(1, &r->fbo);

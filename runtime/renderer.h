@@ -17,6 +17,8 @@ struct RendererConfig {
     int height = 480;
     uint32_t max_points = 0;        // capacity of the point buffers
     uint32_t vertex_count = 0;      // capacity of the mesh vertex buffer
+    uint32_t max_lines = 0;         // capacity of the silhouette line buffer
+    float line_width = 1.0f;        // silhouette width in pixels (clamped to the GL range)
     const uint32_t* indices = nullptr;  // triangle list, uploaded once
     uint32_t triangle_count = 0;
     float background[3] = {1.0f, 1.0f, 1.0f};
@@ -35,6 +37,8 @@ struct Renderer {
     GLint mesh_vp = -1, mesh_bias = -1, mesh_paper = -1, point_vp = -1, point_ink = -1;
     GLuint mesh_vao = 0, mesh_vbo = 0, mesh_ibo = 0;
     GLuint point_vao = 0, point_pos_vbo = 0, point_size_vbo = 0;
+    GLuint line_program = 0, line_vao = 0, line_vbo = 0;
+    GLint line_vp = -1, line_ink = -1;
 };
 
 // Creates the framebuffer, shaders and buffers. On failure writes one line into `error`.
@@ -46,6 +50,10 @@ void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const flo
                         uint32_t vertex_count);
 void renderer_draw_points(Renderer* r, const glm::mat4& view_projection, const float* positions,
                           const float* sizes, uint32_t point_count);
+
+// Draws `line_count` ink lines (6 floats each) depth-tested against the mesh pass.
+void renderer_draw_lines(Renderer* r, const glm::mat4& view_projection, const float* lines,
+                         uint32_t line_count);
 
 // Reads back the frame as RGBA8, bottom row first (width * height * 4 bytes).
 void renderer_read_color(Renderer* r, uint8_t* rgba);

@@ -31,6 +31,8 @@ const char* kUsage =
     "  --point-size PX         maximum stipple diameter (default 3, in [0.5, 32])\n"
     "  --background RRGGBB     background colour (default ffffff)\n"
     "  --no-relevance-update   keep rest-pose relevance radii (thesis Alg. 6.3 without 6.4)\n"
+    "  --no-silhouettes        do not draw silhouette lines\n"
+    "  --line-width PX         silhouette line width (default 1, in [0.5, 16])\n"
     "  --dots-out              also write dots_NNNN.csv (id,x,y,size per drawn dot)\n"
     "  --no-png                do not write per-frame PNGs\n"
     "  --no-apng               do not write anim.png\n"
@@ -44,6 +46,8 @@ struct Options {
     double fps = 30, time0 = 0, zoom = 1, yaw = 0, pitch = 0, tone = -1, point_size = 3;
     int width = 640, height = 480;
     float background[3] = {1, 1, 1};
+    double line_width = 1;
+    bool silhouettes = true;
     bool relevance_update = true, dots_out = false, png = true, apng = true, stats = false;
 };
 
@@ -108,6 +112,10 @@ Options parse(int argc, char** argv) {
             for (int k = 0; k < 3; ++k) o.background[k] = float((rgb >> (16 - 8 * k)) & 0xFF) / 255;
         } else if (a == "--no-relevance-update") {
             o.relevance_update = false;
+        } else if (a == "--no-silhouettes") {
+            o.silhouettes = false;
+        } else if (a == "--line-width") {
+            o.line_width = parse_double(a, value(), 0.5, 16);
         } else if (a == "--dots-out") {
             o.dots_out = true;
         } else if (a == "--no-png") {
@@ -196,6 +204,8 @@ int main(int argc, char** argv) {
     pc.relevance_update = o.relevance_update;
     pc.constant_tone = float(o.tone);
     pc.max_point_size = float(o.point_size);
+    pc.silhouettes = o.silhouettes;
+    pc.line_width = float(o.line_width);
     std::memcpy(pc.background, o.background, sizeof(pc.background));
     std::unique_ptr<stipple::Pipeline> pipeline(new stipple::Pipeline());
     char message[256] = {};
@@ -247,13 +257,13 @@ int main(int argc, char** argv) {
             "{\"asset\": \"%s\", \"backend\": \"%s\", \"renderer\": \"%s\", \"clip\": \"%s\", "
             "\"frames\": %ld, \"width\": %d, \"height\": %d, \"points_total\": %u, "
             "\"points_drawn\": %.1f, \"ms_per_frame\": %.3f, \"ms_per_stage\": {\"sample\": %.3f, "
-            "\"skin\": %.3f, \"place\": %.3f, \"relevance\": %.3f, \"size\": %.3f, \"draw\": %.3f, "
-            "\"readback\": %.3f}}\n",
+            "\"skin\": %.3f, \"place\": %.3f, \"relevance\": %.3f, \"size\": %.3f, "
+            "\"silhouette\": %.3f, \"draw\": %.3f, \"readback\": %.3f}}\n",
             o.asset.c_str(), stipple::platform::backend_name(context.backend),
             context.renderer.c_str(), clip >= 0 ? asset.clips[clip].name : "(rest pose)",
             o.frames, o.width, o.height, asset.points.point_count, drawn / n, frame_ms / n,
             times.sample / n, times.skin / n, times.place / n, times.relevance / n, times.size / n,
-            times.draw / n, times.readback / n);
+            times.silhouette / n, times.draw / n, times.readback / n);
     }
     stipple::pipeline_destroy(pipeline.get());
     stipple::platform::destroy_headless_context(&context);
