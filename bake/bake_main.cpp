@@ -8,6 +8,7 @@
 #include "bake/asset_writer.h"
 #include "bake/point_hierarchy.h"
 #include "bake/scene_import.h"
+#include "bake/vertex_normals.h"
 
 namespace {
 
@@ -17,6 +18,8 @@ const char* kUsage =
     "  -o, --output F   asset to write\n"
     "  --points N       points in the hierarchy (default 20000, max 20000000)\n"
     "  --seed S         random seed (default 1); same input+options+seed = same bytes\n"
+    "  --normals M      flat | smooth | auto (split at sharp edges) | input (default auto)\n"
+    "  --crease DEG     auto normals: dihedral angle that makes an edge sharp (default 40)\n"
     "  --quiet          no progress or summary\n"
     "  -h, --help       this text\n";
 
@@ -24,6 +27,7 @@ struct Options {
     std::string input, output;
     long points = 20000;
     unsigned long long seed = 1;
+    stipple::bake::NormalConfig normals;
     bool quiet = false;
 };
 
@@ -61,6 +65,13 @@ Options parse(int argc, char** argv) {
             char* end = nullptr;
             o.seed = std::strtoull(s, &end, 10);
             if (end == s || *end != '\0') die("--seed must be a non-negative integer");
+        } else if (a == "--normals") {
+            if (!stipple::bake::parse_normal_mode(value(), &o.normals.mode))
+                die("--normals must be flat, smooth, auto or input");
+        } else if (a == "--crease") {
+            long degrees = 0;
+            if (!parse_long(value(), 0, 180, &degrees)) die("--crease must be an integer in [0, 180]");
+            o.normals.crease_degrees = float(degrees);
         } else if (a == "--quiet") {
             o.quiet = true;
         } else if (!a.empty() && a[0] == '-') {
@@ -107,6 +118,8 @@ int main(int argc, char** argv) {
     if (!import_scene(o.input, &scene, &error)) die(error);
     if (!o.quiet)
         for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+
+    assign_normals(o.normals, &scene);
 
     Progress progress;
     progress.quiet = o.quiet;
