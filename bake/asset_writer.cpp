@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "bake/point_codec_encode.h"
 #include "bake/silhouette_edges.h"
 #include "runtime/asset_format.h"
 
@@ -111,6 +112,16 @@ std::vector<uint8_t> neighbours_section(const PointHierarchy& p) {
     return b.v;
 }
 
+std::vector<uint8_t> point_stream_section(const PointHierarchy& p, uint32_t triangle_count) {
+    EncodedPoints e = encode_points(p, triangle_count);
+    Bytes b;
+    b.u32(uint32_t(p.size()));
+    b.put(&e.radius_max, 1);
+    b.put(&e.bit_count, 1);
+    b.put(e.bytes);
+    return b.v;
+}
+
 std::vector<uint8_t> edges_section(const RawScene& s) {
     std::vector<uint32_t> edges = silhouette_edges(s);
     Bytes b;
@@ -121,7 +132,8 @@ std::vector<uint8_t> edges_section(const RawScene& s) {
 
 }  // namespace
 
-std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points) {
+std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points,
+                                  const AssetOptions& options) {
     struct Section {
         uint32_t tag;
         std::vector<uint8_t> bytes;
@@ -132,8 +144,12 @@ std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& p
         sections.push_back({format::kTagSkin, skin_section(scene)});
         if (!scene.clips.empty()) sections.push_back({format::kTagClips, clip_section(scene)});
     }
-    sections.push_back({format::kTagPoints, points_section(points)});
-    sections.push_back({format::kTagNeighbours, neighbours_section(points)});
+    if (options.version == 0) {
+        sections.push_back({format::kTagPoints, points_section(points)});
+        sections.push_back({format::kTagNeighbours, neighbours_section(points)});
+    } else {
+        sections.push_back({format::kTagPointStream, point_stream_section(points, uint32_t(scene.triangle_count()))});
+    }
     sections.push_back({format::kTagEdges, edges_section(scene)});
 
     std::vector<format::SectionEntry> table(sections.size());
@@ -147,7 +163,7 @@ std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& p
     }
     format::FileHeader h = {};
     std::memcpy(h.magic, format::kMagic, 4);
-    h.version = format::kVersion;
+    h.version = options.version;
     h.endian_tag = format::kEndianTag;
     h.section_count = uint32_t(table.size());
     h.table_crc = format::crc32(table.data(), table.size() * sizeof(format::SectionEntry));

@@ -8,6 +8,7 @@
 #include <new>
 
 #include "runtime/asset_format.h"
+#include "runtime/point_codec.h"
 
 namespace stipple {
 
@@ -206,6 +207,91 @@ LoadStatus parse_neighbours(Reader r, PointsView* p) {
     return {};
 }
 
+// One pass over the v1 point stream (thesis §4.5 fields, coded as in point_codec.h). With
+// out == nullptr it only counts neighbours so the caller can size the arrays.
+bool decode_point_stream(codec::BitReader r, uint32_t point_count, float radius_max,
+                         uint32_t triangle_count, PointsView* out, uint32_t* neighbour_total,
+                         char* why, size_t why_size) {
+    uint32_t host = 0, total = 0;
+    const float bary_scale = 1.0f / float((1u << codec::kBaryBits) - 1);
+    for (uint32_t i = 0; i < point_count; ++i) {
+        host += uint32_t(r.zigzag(codec::host_order(triangle_count)));
+        uint32_t u = r.bits(codec::kBaryBits), v = r.bits(codec::kBaryBits);
+        uint32_t q = r.bits(codec::kRadiusBits), n = r.bits(codec::kCountBits);
+        if (!r.ok) break;
+        if (host >= triangle_count || u + v > (1u << codec::kBaryBits) - 1) {
+            std::snprintf(why, why_size, "point %u host triangle %u (of %u) or barycentrics invalid",
+                          i, host, triangle_count);
+            return false;
+        }
+        const int k = codec::neighbour_order(i);
+        uint32_t previous = 0;
+        for (uint32_t j = 0; j < n && r.ok; ++j) {
+            int64_t index = j == 0 ? int64_t(i) - r.zigzag(k) : int64_t(previous) - 1 - r.golomb(k);
+            if (index < 0 || index >= int64_t(point_count)) {
+                std::snprintf(why, why_size, "point %u neighbour %lld out of range", i,
+                              static_cast<long long>(index));
+                return false;
+            }
+            previous = uint32_t(index);
+            if (out) const_cast<uint32_t*>(out->neighbours)[total + j] = previous;
+        }
+        if (out) {
+            const_cast<uint32_t*>(out->host_triangle)[i] = host;
+            const_cast<float*>(out->bary_u)[i] = float(u) * bary_scale;
+            const_cast<float*>(out->bary_v)[i] = float(v) * bary_scale;
+            const_cast<float*>(out->radius)[i] =
+                q == codec::kRadiusZero
+                    ? 0.0f
+                    : radius_max * std::exp2(-float(q) / codec::kRadiusStepsPerOctave);
+            const_cast<uint32_t*>(out->neighbour_offsets)[i + 1] = total + n;
+        }
+        total += n;
+    }
+    if (!r.ok) {
+        std::snprintf(why, why_size, "stream ends early");
+        return false;
+    }
+    *neighbour_total = total;
+    return true;
+}
+
+LoadStatus parse_point_stream(Reader r, uint32_t triangle_count, Asset* a) {
+    uint32_t point_count = r.u32();
+    const float* radius_max = r.take<float>(1);
+    const uint64_t* bit_count = r.take<uint64_t>(1);
+    if (!r.ok || !std::isfinite(*radius_max) || *bit_count > uint64_t(r.size - r.at) * 8)
+        return fail(LoadError::malformed_section, "PNTQ: header does not fit the section");
+    const size_t bytes = size_t((*bit_count + 7) / 8);
+    codec::BitReader bits{r.data + r.at, size_t(*bit_count)};
+    if (r.at + bytes != r.size)
+        return fail(LoadError::malformed_section, "PNTQ: %llu bits but %zu bytes follow",
+                    static_cast<unsigned long long>(*bit_count), r.size - r.at);
+    char why[120] = {};
+    uint32_t total = 0;
+    if (!decode_point_stream(bits, point_count, *radius_max, triangle_count, nullptr, &total, why,
+                             sizeof(why)))
+        return fail(LoadError::out_of_range, "PNTQ: %s", why);
+    // host, u, v, radius (4 words each per point), offsets (P + 1), neighbours.
+    const size_t words = size_t(point_count) * 5 + 1 + total;
+    a->point_storage.reset(new (std::nothrow) uint32_t[words]);
+    if (!a->point_storage) return fail(LoadError::malformed_section, "PNTQ: out of memory");
+    uint32_t* w = a->point_storage.get();
+    PointsView& p = a->points;
+    p.point_count = point_count;
+    p.host_triangle = w;
+    p.bary_u = reinterpret_cast<const float*>(w + point_count);
+    p.bary_v = reinterpret_cast<const float*>(w + size_t(point_count) * 2);
+    p.radius = reinterpret_cast<const float*>(w + size_t(point_count) * 3);
+    p.neighbour_offsets = w + size_t(point_count) * 4;
+    p.neighbours = w + size_t(point_count) * 5 + 1;
+    p.neighbour_count = total;
+    w[size_t(point_count) * 4] = 0;
+    decode_point_stream(bits, point_count, *radius_max, triangle_count, &p, &total, why,
+                        sizeof(why));
+    return {};
+}
+
 LoadStatus parse_edges(Reader r, const MeshView& m, EdgesView* e) {
     e->edge_count = r.u32();
     e->edges = r.take<uint32_t>(size_t(e->edge_count) * 4);
@@ -236,9 +322,11 @@ LoadStatus parse(const uint8_t* bytes, size_t size, Asset* a) {
     std::memcpy(&h, bytes, sizeof(h));
     if (h.endian_tag != format::kEndianTag)
         return fail(LoadError::wrong_endianness, "asset byte order does not match this machine");
-    if (h.version != format::kVersion)
-        return fail(LoadError::unsupported_version, "asset format version %u, this runtime reads %u",
-                    h.version, format::kVersion);
+    if (h.version < format::kOldestVersion || h.version > format::kVersion)
+        return fail(LoadError::unsupported_version,
+                    "asset format version %u, this runtime reads %u to %u", h.version,
+                    format::kOldestVersion, format::kVersion);
+    a->version = h.version;
     if (h.file_size != size)
         return fail(LoadError::truncated, "asset is %zu bytes but its header says %llu", size,
                     static_cast<unsigned long long>(h.file_size));
@@ -259,16 +347,18 @@ LoadStatus parse(const uint8_t* bytes, size_t size, Asset* a) {
         if (format::crc32(bytes + s.offset, s.size) != s.crc)
             return fail(LoadError::checksum_mismatch, "%s: checksum mismatch (corrupted asset)", tag);
     }
-    const uint32_t tags[6] = {format::kTagMesh,   format::kTagSkin,       format::kTagClips,
-                              format::kTagPoints, format::kTagNeighbours, format::kTagEdges};
-    const format::SectionEntry* sec[6];
-    for (int i = 0; i < 6; ++i) {
+    const uint32_t tags[7] = {format::kTagMesh,       format::kTagSkin,  format::kTagClips,
+                              format::kTagPoints,     format::kTagNeighbours,
+                              format::kTagEdges,      format::kTagPointStream};
+    const format::SectionEntry* sec[7];
+    for (int i = 0; i < 7; ++i) {
         sec[i] = find_section(table, h.section_count, tags[i]);
         a->section_size[i] = sec[i] ? sec[i]->size : 0;
     }
-    if (!sec[0] || !sec[3] || !sec[4])
+    const bool coded = h.version >= 1;
+    if (!sec[0] || (coded && !sec[6]) || (!coded && (!sec[3] || !sec[4])))
         return fail(LoadError::missing_section, "asset lacks a %s section",
-                    !sec[0] ? "MESH" : !sec[3] ? "PNTS" : "NBRS");
+                    !sec[0] ? "MESH" : coded ? "PNTQ" : !sec[3] ? "PNTS" : "NBRS");
     if (sec[2] && !sec[1]) return fail(LoadError::missing_section, "CLIP section without SKIN");
     auto reader = [&](const format::SectionEntry* s) {
         return Reader{bytes + s->offset, size_t(s->size)};
@@ -279,8 +369,9 @@ LoadStatus parse(const uint8_t* bytes, size_t size, Asset* a) {
         st = parse_skin(reader(sec[1]), a->mesh.vertex_count, &a->skin);
     }
     if (st.ok() && sec[2]) st = parse_clips(reader(sec[2]), a->skin.skeleton.node_count, a);
-    if (st.ok()) st = parse_points(reader(sec[3]), a->mesh.triangle_count, &a->points);
-    if (st.ok()) st = parse_neighbours(reader(sec[4]), &a->points);
+    if (st.ok() && coded) st = parse_point_stream(reader(sec[6]), a->mesh.triangle_count, a);
+    if (st.ok() && !coded) st = parse_points(reader(sec[3]), a->mesh.triangle_count, &a->points);
+    if (st.ok() && !coded) st = parse_neighbours(reader(sec[4]), &a->points);
     if (st.ok() && sec[5]) st = parse_edges(reader(sec[5]), a->mesh, &a->edges);
     return st;
 }

@@ -74,12 +74,14 @@ struct Asset {
     uint32_t clip_count = 0;
     const anim::Clip* clips = nullptr;
     size_t file_size = 0;
-    size_t section_size[6] = {};  // MESH, SKIN, CLIP, PNTS, NBRS, EDGE bytes (0 if absent)
+    uint16_t version = 0;
+    size_t section_size[7] = {};  // MESH, SKIN, CLIP, PNTS, NBRS, EDGE, PNTQ bytes (0: absent)
 
     // Owned storage: the file bytes and the clip/channel tables built from them.
     std::unique_ptr<uint8_t[]> storage;
     std::unique_ptr<anim::Channel[]> channel_storage;
     std::unique_ptr<anim::Clip[]> clip_storage;
+    std::unique_ptr<uint32_t[]> point_storage;  // decoded v1 point stream
 };
 
 // Reads and validates a whole asset. On failure `out` is left empty.

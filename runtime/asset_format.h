@@ -8,7 +8,8 @@
 namespace stipple::format {
 
 constexpr char kMagic[4] = {'S', 'T', 'I', 'P'};
-constexpr uint16_t kVersion = 0;
+constexpr uint16_t kVersion = 1;        // written by the bake
+constexpr uint16_t kOldestVersion = 0;  // still read: v0 stores points uncompressed
 constexpr uint16_t kEndianTag = 0xFEFF;  // reads as 0xFFFE on a big-endian machine
 constexpr uint32_t kSectionAlign = 16;
 
@@ -22,6 +23,7 @@ constexpr uint32_t kTagClips = fourcc('C', 'L', 'I', 'P');
 constexpr uint32_t kTagPoints = fourcc('P', 'N', 'T', 'S');
 constexpr uint32_t kTagNeighbours = fourcc('N', 'B', 'R', 'S');
 constexpr uint32_t kTagEdges = fourcc('E', 'D', 'G', 'E');
+constexpr uint32_t kTagPointStream = fourcc('P', 'N', 'T', 'Q');  // v1: PNTS + NBRS, coded
 constexpr uint32_t kNoFace = 0xFFFFFFFFu;  // second face of a boundary edge
 
 struct FileHeader {         // 32 bytes at offset 0

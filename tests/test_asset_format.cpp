@@ -2,6 +2,9 @@
 // truncated, corrupted or lying asset instead of crashing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <random>
@@ -49,11 +52,13 @@ void make_scene(bake::RawScene* s, bake::PointHierarchy* p) {
     p->neighbours = {1, 2, 0, 0, 1};
 }
 
-std::vector<uint8_t> encoded() {
+std::vector<uint8_t> encoded(uint16_t version = 1) {
     bake::RawScene s;
     bake::PointHierarchy p;
     make_scene(&s, &p);
-    return bake::encode_asset(s, p);
+    bake::AssetOptions options;
+    options.version = version;
+    return bake::encode_asset(s, p, options);
 }
 
 // Recomputes every checksum, so a test can change a value and reach the semantic checks.
@@ -80,7 +85,9 @@ TEST(AssetFormat, RoundTripKeepsEveryField) {
     bake::RawScene s;
     bake::PointHierarchy p;
     make_scene(&s, &p);
-    std::vector<uint8_t> bytes = bake::encode_asset(s, p);
+    bake::AssetOptions v0;
+    v0.version = 0;
+    std::vector<uint8_t> bytes = bake::encode_asset(s, p, v0);
     Asset a;
     LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
     ASSERT_TRUE(st.ok()) << st.message;
@@ -111,7 +118,60 @@ TEST(AssetFormat, RoundTripKeepsEveryField) {
     EXPECT_EQ(a.points.neighbour_offsets[3], 5u);
     EXPECT_EQ(a.points.neighbours[4], 1u);
     // Re-encoding is byte-identical (deterministic writer).
-    EXPECT_EQ(bytes, bake::encode_asset(s, p));
+    EXPECT_EQ(bytes, bake::encode_asset(s, p, v0));
+}
+
+// Version 1 codes the point hierarchy: the quantisation stays within the bounds that
+// runtime/point_codec.h and docs/format.md state, and neighbour lists survive exactly.
+TEST(AssetFormat, CompactPointsRoundTripWithinStatedError) {
+    bake::RawScene s;
+    bake::PointHierarchy p;
+    make_scene(&s, &p);
+    // A larger hierarchy with random values, so every code path is exercised.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const uint32_t n = 5000;
+    p = bake::PointHierarchy();
+    p.neighbour_offsets.push_back(0);
+    for (uint32_t i = 0; i < n; ++i) {
+        float u = unit(rng), v = unit(rng) * (1.0f - u);
+        p.host_triangle.push_back(rng() % 2);
+        p.bary_u.push_back(u);
+        p.bary_v.push_back(v);
+        p.radius.push_back(i == 17 ? 0.0f : 2.0f / std::sqrt(float(i + 1)));
+        uint32_t count = i == 0 ? 0 : 1 + rng() % 6;
+        for (uint32_t k = 0; k < count; ++k) {
+            uint32_t j = i - 1 - rng() % std::min(i, 40u);
+            if (rng() % 8 == 0) j = rng() % n;  // a few forward references
+            if (j == i) j = (i + 1) % n;
+            p.neighbours.push_back(j);
+        }
+        p.neighbour_offsets.push_back(uint32_t(p.neighbours.size()));
+    }
+    std::vector<uint8_t> bytes = bake::encode_asset(s, p);
+    Asset a;
+    LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
+    ASSERT_TRUE(st.ok()) << st.message;
+    EXPECT_EQ(a.version, 1);
+    ASSERT_EQ(a.points.point_count, n);
+    const float bary_error = 0.5f / 4095.0f + 1e-6f;
+    for (uint32_t i = 0; i < n; ++i) {
+        ASSERT_EQ(a.points.host_triangle[i], p.host_triangle[i]);
+        ASSERT_NEAR(a.points.bary_u[i], p.bary_u[i], bary_error);
+        ASSERT_LE(a.points.bary_u[i] + a.points.bary_v[i], 1.0f + 1e-6f);
+        ASSERT_NEAR(a.points.bary_v[i], p.bary_v[i], 2 * bary_error);
+        ASSERT_NEAR(a.points.radius[i], p.radius[i], 0.0014f * p.radius[i] + 1e-9f);
+        std::vector<uint32_t> want(p.neighbours.begin() + p.neighbour_offsets[i],
+                                   p.neighbours.begin() + p.neighbour_offsets[i + 1]);
+        std::sort(want.begin(), want.end());
+        want.erase(std::unique(want.begin(), want.end()), want.end());
+        std::vector<uint32_t> got(a.points.neighbours + a.points.neighbour_offsets[i],
+                                  a.points.neighbours + a.points.neighbour_offsets[i + 1]);
+        std::sort(got.begin(), got.end());
+        ASSERT_EQ(got, want) << i;
+    }
+    size_t point_bytes = a.section_size[6];
+    std::printf("v1 point stream: %.2f bytes per point\n", double(point_bytes) / n);
 }
 
 TEST(AssetFormat, TruncatedAssetIsRejectedAtEveryLength) {
@@ -131,11 +191,11 @@ TEST(AssetFormat, TruncatedAssetIsRejectedAtEveryLength) {
 
 TEST(AssetFormat, CorruptedSectionIsNamed) {
     std::vector<uint8_t> bytes = encoded();
-    bytes[section_offset(bytes, format::kTagPoints) + 9] ^= 0x40;
+    bytes[section_offset(bytes, format::kTagPointStream) + 17] ^= 0x40;
     Asset a;
     LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
     EXPECT_EQ(st.error, LoadError::checksum_mismatch);
-    EXPECT_NE(std::strstr(st.message, "PNTS"), nullptr) << st.message;
+    EXPECT_NE(std::strstr(st.message, "PNTQ"), nullptr) << st.message;
 }
 
 TEST(AssetFormat, BadMagicAndVersionAreNamed) {
@@ -152,7 +212,7 @@ TEST(AssetFormat, BadMagicAndVersionAreNamed) {
 }
 
 TEST(AssetFormat, OutOfRangeIndicesAreRejectedEvenWithValidChecksums) {
-    std::vector<uint8_t> bytes = encoded();
+    std::vector<uint8_t> bytes = encoded(0);
     // PNTS: u32 count, then host_triangle[3]; point 1's host becomes triangle 7 of 2.
     uint32_t bad = 7;
     std::memcpy(&bytes[section_offset(bytes, format::kTagPoints) + 8], &bad, 4);
@@ -162,7 +222,7 @@ TEST(AssetFormat, OutOfRangeIndicesAreRejectedEvenWithValidChecksums) {
     EXPECT_EQ(st.error, LoadError::out_of_range);
     EXPECT_NE(std::strstr(st.message, "host triangle 7"), nullptr) << st.message;
 
-    bytes = encoded();
+    bytes = encoded(0);
     // NBRS: u32 points, u32 count, offsets[4], then neighbours: the first becomes 99.
     bad = 99;
     std::memcpy(&bytes[section_offset(bytes, format::kTagNeighbours) + 8 + 16], &bad, 4);
@@ -183,26 +243,28 @@ TEST(AssetFormat, OutOfRangeIndicesAreRejectedEvenWithValidChecksums) {
 // either accept the asset or reject it with a message, never crash (run under ASan to see
 // any overrun).
 TEST(AssetFormat, RandomCorruptionNeverCrashes) {
-    const std::vector<uint8_t> bytes = encoded();
-    const size_t payload = section_offset(bytes, format::kTagMesh);
-    std::mt19937 rng(1234);
-    int rejected = 0;
-    for (int trial = 0; trial < 3000; ++trial) {
-        std::vector<uint8_t> b = bytes;
-        int flips = 1 + int(rng() % 4);
-        // Odd trials change section payloads and repair the checksums; even trials change
-        // anything, header and section table included.
-        size_t from = trial % 2 ? payload : 0;
-        for (int k = 0; k < flips; ++k) b[from + rng() % (b.size() - from)] = uint8_t(rng());
-        if (trial % 2) fix_checksums(&b);
-        Asset a;
-        LoadStatus st = load_asset_memory(b.data(), b.size(), &a);
-        if (!st.ok()) {
-            ++rejected;
-            ASSERT_NE(st.message[0], '\0');
+    for (uint16_t version : {0, 1}) {
+        const std::vector<uint8_t> bytes = encoded(version);
+        const size_t payload = section_offset(bytes, format::kTagMesh);
+        std::mt19937 rng(1234);
+        int rejected = 0;
+        for (int trial = 0; trial < 3000; ++trial) {
+            std::vector<uint8_t> b = bytes;
+            int flips = 1 + int(rng() % 4);
+            // Odd trials change section payloads and repair the checksums; even trials change
+            // anything, header and section table included.
+            size_t from = trial % 2 ? payload : 0;
+            for (int k = 0; k < flips; ++k) b[from + rng() % (b.size() - from)] = uint8_t(rng());
+            if (trial % 2) fix_checksums(&b);
+            Asset a;
+            LoadStatus st = load_asset_memory(b.data(), b.size(), &a);
+            if (!st.ok()) {
+                ++rejected;
+                ASSERT_NE(st.message[0], '\0');
+            }
         }
+        EXPECT_GT(rejected, 1000);
     }
-    EXPECT_GT(rejected, 1500);
 }
 
 }  // namespace
