@@ -9,6 +9,7 @@
 #include "bake/point_hierarchy.h"
 #include "bake/scene_import.h"
 #include "bake/vertex_normals.h"
+#include "runtime/asset.h"
 
 namespace {
 
@@ -136,11 +137,16 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "warning: only %zu points could be built\n", points.size());
 
     std::vector<uint8_t> bytes = encode_asset(scene, points);
+    // Read the asset back with the runtime's validating loader before writing it, so a
+    // bake never leaves an asset the runtime would refuse.
+    stipple::Asset check;
+    stipple::LoadStatus loaded = stipple::load_asset_memory(bytes.data(), bytes.size(), &check);
+    if (!loaded.ok()) die(std::string("internal error: baked asset does not load: ") + loaded.message);
     if (!write_asset(o.output, bytes, &error)) die(error);
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!o.quiet) {
-        size_t point_bytes = points.size() * 16 + points.neighbour_offsets.size() * 4 +
-                             points.neighbours.size() * 4;
+        // Point data only: the v1 point stream (or v0's PNTS + NBRS).
+        size_t point_bytes = check.section_size[3] + check.section_size[4] + check.section_size[6];
         std::printf(
             "{\"input\": \"%s\", \"output\": \"%s\", \"vertices\": %zu, \"triangles\": %zu, "
             "\"joints\": %zu, \"clips\": %zu, \"points\": %zu, \"input_points\": %u, "
