@@ -1,0 +1,84 @@
+/* stipple C API: load a .stip asset and draw animated stipple frames with GLES 3.
+ *
+ * The caller owns the GL context (make it current before any player call) and passes its
+ * get-proc-address; the player draws into its own offscreen framebuffer and hands frames
+ * back as RGBA8. Descriptions are zero-initialised structs: zero means "default" (sokol
+ * style). No call throws; failures return a stipple_result and stipple_last_error() says
+ * what went wrong in one line. All memory is taken in the create/load calls; drawing a
+ * frame allocates nothing.
+ *
+ *   stipple_asset* asset;
+ *   if (stipple_asset_load_file("man.stip", &asset) != STIPPLE_OK) puts(stipple_last_error());
+ *   stipple_player_desc desc = {0};
+ *   desc.get_proc_address = (stipple_get_proc_fn)eglGetProcAddress;
+ *   stipple_player* player;
+ *   stipple_player_create(asset, &desc, &player);
+ *   stipple_player_draw(player, 0, t);
+ *   stipple_player_read_rgba(player, pixels);
+ */
+#ifndef STIPPLE_H
+#define STIPPLE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum stipple_result {
+    STIPPLE_OK = 0,
+    STIPPLE_ERROR_INVALID_ARGUMENT,
+    STIPPLE_ERROR_IO,
+    STIPPLE_ERROR_BAD_ASSET,           /* truncated, corrupted or inconsistent asset */
+    STIPPLE_ERROR_UNSUPPORTED_VERSION,
+    STIPPLE_ERROR_GL,                  /* missing GL entry point, shader or framebuffer error */
+    STIPPLE_ERROR_OUT_OF_MEMORY
+} stipple_result;
+
+typedef struct stipple_asset stipple_asset;
+typedef struct stipple_player stipple_player;
+typedef void* (*stipple_get_proc_fn)(const char* name);
+
+typedef struct stipple_player_desc {
+    int width, height;          /* offscreen image size; 0: 640 x 480 */
+    float zoom;                 /* 0: 1 (rest-pose bounds fit the view) */
+    float yaw_degrees;          /* camera orbit */
+    float pitch_degrees;
+    int use_constant_tone;      /* 0: Lambert lighting; 1: constant_tone everywhere */
+    float constant_tone;        /* target tone in [0, 1] when use_constant_tone */
+    float max_point_size;       /* stipple diameter in pixels; 0: 3 */
+    int no_relevance_update;    /* 1: keep rest-pose relevance (thesis Alg. 6.3 only) */
+    int no_silhouettes;         /* 1: no silhouette lines */
+    uint32_t background_rgb;    /* 0xRRGGBB; used only when background_set */
+    int background_set;         /* 0: white paper */
+    stipple_get_proc_fn get_proc_address; /* required */
+} stipple_player_desc;
+
+/* One line describing the last failure on this thread ("" if none). */
+const char* stipple_last_error(void);
+
+stipple_result stipple_asset_load_file(const char* path, stipple_asset** out);
+stipple_result stipple_asset_load_memory(const void* data, size_t size, stipple_asset** out);
+void stipple_asset_destroy(stipple_asset* asset);
+uint32_t stipple_asset_point_count(const stipple_asset* asset);
+uint32_t stipple_asset_clip_count(const stipple_asset* asset);
+const char* stipple_asset_clip_name(const stipple_asset* asset, uint32_t clip); /* NULL if none */
+float stipple_asset_clip_duration(const stipple_asset* asset, uint32_t clip);
+int stipple_asset_find_clip(const stipple_asset* asset, const char* name_or_index); /* -1 */
+
+/* The asset must outlive the player. */
+stipple_result stipple_player_create(const stipple_asset* asset, const stipple_player_desc* desc,
+                                     stipple_player** out);
+/* Poses clip `clip` (-1: rest pose) at `time_seconds` (clamped to the clip) and draws. */
+void stipple_player_draw(stipple_player* player, int clip, float time_seconds);
+/* width * height * 4 bytes, bottom row first (GL order). */
+void stipple_player_read_rgba(stipple_player* player, uint8_t* rgba);
+uint32_t stipple_player_points_drawn(const stipple_player* player);
+void stipple_player_destroy(stipple_player* player);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* STIPPLE_H */

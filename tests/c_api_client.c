@@ -1,0 +1,36 @@
+/* A plain C client of runtime/stipple.h, compiled as C so the header stays C-clean; the
+ * gtest in test_c_api.cpp calls it with a headless context's get-proc-address. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "runtime/stipple.h"
+
+/* Renders frame `time` of clip 0 and returns the number of dark pixels, or -1 on error
+ * (the message is in stipple_last_error()). */
+long c_api_render_dark_pixels(const char* asset_path, stipple_get_proc_fn get_proc, float time,
+                              uint32_t* points_drawn) {
+    stipple_asset* asset = NULL;
+    stipple_player* player = NULL;
+    stipple_player_desc desc;
+    uint8_t* rgba;
+    long dark = 0;
+    size_t i;
+    if (stipple_asset_load_file(asset_path, &asset) != STIPPLE_OK) return -1;
+    memset(&desc, 0, sizeof(desc));
+    desc.width = 320;
+    desc.height = 240;
+    desc.get_proc_address = get_proc;
+    if (stipple_player_create(asset, &desc, &player) != STIPPLE_OK) {
+        stipple_asset_destroy(asset);
+        return -1;
+    }
+    rgba = (uint8_t*)malloc(320 * 240 * 4);
+    stipple_player_draw(player, stipple_asset_clip_count(asset) > 0 ? 0 : -1, time);
+    stipple_player_read_rgba(player, rgba);
+    for (i = 0; i < 320 * 240; ++i) dark += rgba[i * 4] < 128;
+    *points_drawn = stipple_player_points_drawn(player);
+    free(rgba);
+    stipple_player_destroy(player);
+    stipple_asset_destroy(asset);
+    return dark;
+}

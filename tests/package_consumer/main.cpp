@@ -1,0 +1,36 @@
+// Renders one frame of an asset with the installed package; prints the dark pixel count.
+#include <platform/headless_context.h>
+#include <runtime/stipple.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+int main(int argc, char** argv) {
+    if (argc != 2) return 2;
+    stipple::platform::HeadlessContext context;
+    std::string error;
+    if (!stipple::platform::create_headless_context({}, &context, &error)) {
+        std::fprintf(stderr, "%s\n", error.c_str());
+        return 1;
+    }
+    stipple_asset* asset = nullptr;
+    stipple_player* player = nullptr;
+    stipple_player_desc desc = {};
+    desc.get_proc_address = stipple::platform::proc_loader(context);
+    if (stipple_asset_load_file(argv[1], &asset) != STIPPLE_OK ||
+        stipple_player_create(asset, &desc, &player) != STIPPLE_OK) {
+        std::fprintf(stderr, "%s\n", stipple_last_error());
+        return 1;
+    }
+    std::vector<uint8_t> rgba(640 * 480 * 4);
+    stipple_player_draw(player, 0, 0.0f);
+    stipple_player_read_rgba(player, rgba.data());
+    long dark = 0;
+    for (size_t i = 0; i < rgba.size(); i += 4) dark += rgba[i] < 128;
+    std::printf("%ld\n", dark);
+    stipple_player_destroy(player);
+    stipple_asset_destroy(asset);
+    stipple::platform::destroy_headless_context(&context);
+    return dark > 100 ? 0 : 1;
+}

@@ -1,0 +1,49 @@
+// The C API end to end: load, create a player on a headless context, draw, read back.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+
+#include "platform/headless_context.h"
+#include "runtime/stipple.h"
+#include "tests/frame_check_util.h"
+
+extern "C" long c_api_render_dark_pixels(const char* asset_path, stipple_get_proc_fn get_proc,
+                                         float time, uint32_t* points_drawn);
+
+namespace {
+
+using namespace stipple::test;
+
+TEST(CApi, RendersAStippledFrameFromC) {
+    std::string asset = ::testing::TempDir() + "c_api_cesium.stip";
+    ASSERT_EQ(run(bin("stipple-bake") + " " + source("assets/CesiumMan/CesiumMan.glb") + " -o " +
+                  asset + " --points 20000 --quiet"),
+              0);
+    stipple::platform::HeadlessContext context;
+    std::string error;
+    ASSERT_TRUE(stipple::platform::create_headless_context({}, &context, &error)) << error;
+    uint32_t drawn = 0;
+    long dark = c_api_render_dark_pixels(asset.c_str(), stipple::platform::proc_loader(context),
+                                         0.5f, &drawn);
+    EXPECT_GT(dark, 300) << stipple_last_error();
+    EXPECT_GT(drawn, 200u);
+    stipple::platform::destroy_headless_context(&context);
+}
+
+TEST(CApi, ErrorsAreCodesWithAMessage) {
+    stipple_asset* asset = nullptr;
+    EXPECT_EQ(stipple_asset_load_file("/nonexistent/x.stip", &asset), STIPPLE_ERROR_IO);
+    EXPECT_EQ(asset, nullptr);
+    EXPECT_NE(std::strstr(stipple_last_error(), "x.stip"), nullptr);
+    const char junk[64] = "definitely not an asset";
+    EXPECT_EQ(stipple_asset_load_memory(junk, sizeof(junk), &asset), STIPPLE_ERROR_BAD_ASSET);
+    EXPECT_EQ(stipple_asset_load_file(nullptr, &asset), STIPPLE_ERROR_INVALID_ARGUMENT);
+    stipple_player* player = nullptr;
+    stipple_player_desc desc = {};
+    EXPECT_EQ(stipple_player_create(nullptr, &desc, &player), STIPPLE_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(stipple_asset_find_clip(nullptr, "walk"), -1);
+    EXPECT_EQ(stipple_asset_clip_name(nullptr, 0), nullptr);
+}
+
+}  // namespace
