@@ -510,6 +510,11 @@ struct Primitive {
     std::vector<uint16_t> joints;   // 4 per vertex, when skinned
     std::vector<float> weights;     // 4 per vertex, when skinned
     bool skinned = false;
+    // Morph targets (§3.7.2.2), one entry per target of the primitive: POSITION deltas (3
+    // per vertex; zeros when the target has none) and NORMAL deltas (3 per vertex, or empty
+    // when the target has none or the primitive's normals were not given).
+    std::vector<std::vector<float>> target_positions;
+    std::vector<std::vector<float>> target_normals;
 };
 
 struct MeshContext {
@@ -639,6 +644,106 @@ bool read_skin_attributes(const MeshContext& ctx, const tinygltf::Primitive& pri
     return true;
 }
 
+// Reads the morph targets of a primitive (§3.7.2.2) for the vertices `used` (old indices).
+// POSITION and NORMAL deltas are VEC3 floats (or, with KHR_mesh_quantization, normalized or
+// plain integers); TANGENT deltas are ignored (the runtime has no tangents). NORMAL deltas
+// are dropped when the primitive's normals are computed, since they would be deltas to
+// normals that do not exist.
+bool read_morph_targets(const MeshContext& ctx, const tinygltf::Primitive& prim,
+                        const std::string& label, size_t vertex_count,
+                        const std::vector<uint32_t>& used, bool has_normals, Primitive* out,
+                        std::string* err) {
+    const unsigned formats =
+        ctx.quantized ? (kF32 | kI8 | kI8N | kU8 | kU8N | kI16 | kI16N | kU16 | kU16N) : kF32;
+    for (size_t t = 0; t < prim.targets.size(); ++t) {
+        const std::string tlabel = label + " target " + str(t);
+        std::vector<float> positions(used.size() * 3, 0.0f);
+        std::vector<float> normals;
+        for (const char* attribute : {"POSITION", "NORMAL"}) {
+            const auto it = prim.targets[t].find(attribute);
+            if (it == prim.targets[t].end()) continue;
+            const bool is_normal = attribute[0] == 'N';
+            if (is_normal && !has_normals) {
+                ctx.warnings->push_back(tlabel +
+                                        ": NORMAL deltas ignored (the primitive has no NORMAL)");
+                continue;
+            }
+            std::vector<float> deltas;
+            std::string sub;
+            if (!read_accessor(ctx.model, it->second, TINYGLTF_TYPE_VEC3, formats, &deltas,
+                               &sub)) {
+                *err = tlabel + " " + attribute + ": " + sub;
+                return false;
+            }
+            if (deltas.size() != vertex_count * 3) {
+                *err = tlabel + ": " + attribute + " count " + str(deltas.size() / 3) +
+                       " differs from POSITION count " + str(vertex_count);
+                return false;
+            }
+            std::vector<float>& dst = is_normal ? normals : positions;
+            dst.resize(used.size() * 3);
+            for (size_t v = 0; v < used.size(); ++v) {
+                const float* d = &deltas[size_t(used[v]) * 3];
+                if (!all_finite(d, 3)) {
+                    *err = tlabel + ": " + attribute + " delta of vertex " + str(size_t(used[v])) +
+                           " is not finite";
+                    return false;
+                }
+                std::copy(d, d + 3, &dst[v * 3]);
+            }
+        }
+        out->target_positions.push_back(std::move(positions));
+        out->target_normals.push_back(std::move(normals));
+    }
+    return true;
+}
+
+// Reorders a skinned primitive's vertices by descending influence count (number of leading
+// weights up to the last non-zero one), stable, and remaps its indices and morph deltas.
+// The skinning job picks its kernel per block of 4 vertices from the largest count in the
+// block, so grouped vertices run the 1-, 2- and 3-influence kernels instead of the 4 one.
+void sort_by_influence_count(Primitive* prim) {
+    const size_t n = prim->positions.size() / 3;
+    std::vector<uint32_t> order(n);
+    std::vector<int> count(n);
+    for (size_t v = 0; v < n; ++v) {
+        order[v] = uint32_t(v);
+        int c = 1;
+        for (int k = 0; k < 4; ++k) {
+            if (prim->weights[v * 4 + size_t(k)] != 0.0f) c = k + 1;
+        }
+        count[v] = c;
+    }
+    std::stable_sort(order.begin(), order.end(),
+                     [&](uint32_t a, uint32_t b) { return count[a] > count[b]; });
+    bool identity = true;
+    for (size_t v = 0; v < n; ++v) identity = identity && order[v] == v;
+    if (identity) return;
+    auto permute = [&](std::vector<float>* values, size_t width) {
+        if (values->empty()) return;
+        std::vector<float> sorted(values->size());
+        for (size_t v = 0; v < n; ++v) {
+            std::copy(values->begin() + long(order[v] * width),
+                      values->begin() + long(order[v] * width + width), sorted.begin() + long(v * width));
+        }
+        *values = std::move(sorted);
+    };
+    permute(&prim->positions, 3);
+    permute(&prim->normals, 3);
+    permute(&prim->weights, 4);
+    for (auto& t : prim->target_positions) permute(&t, 3);
+    for (auto& t : prim->target_normals) permute(&t, 3);
+    std::vector<uint16_t> joints(prim->joints.size());
+    for (size_t v = 0; v < n; ++v) {
+        std::copy(prim->joints.begin() + long(order[v] * 4),
+                  prim->joints.begin() + long(order[v] * 4 + 4), joints.begin() + long(v * 4));
+    }
+    prim->joints = std::move(joints);
+    std::vector<uint32_t> inverse(n);
+    for (size_t v = 0; v < n; ++v) inverse[order[v]] = uint32_t(v);
+    for (uint32_t& index : prim->indices) index = inverse[index];
+}
+
 // Reads one primitive. *skipped is set (with a warning) for primitives that are legal but
 // not triangles or have no positions.
 bool read_primitive(const MeshContext& ctx, size_t mesh_index, size_t prim_index, bool want_skin,
@@ -665,9 +770,6 @@ bool read_primitive(const MeshContext& ctx, size_t mesh_index, size_t prim_index
         ctx.warnings->push_back(label + ": no POSITION attribute; primitive skipped");
         *skipped = true;
         return true;
-    }
-    if (!prim.targets.empty()) {
-        ctx.warnings->push_back(label + ": morph targets are unsupported; base shape used");
     }
 
     // KHR_mesh_quantization allows integer positions and normalized normals.
@@ -797,16 +899,27 @@ bool read_primitive(const MeshContext& ctx, size_t mesh_index, size_t prim_index
     if (want_skin && !read_skin_attributes(ctx, prim, label, vertex_count, used, out, err)) {
         return false;
     }
+    if (!read_morph_targets(ctx, prim, label, vertex_count, used, !normals.empty(), out, err)) {
+        return false;
+    }
+    if (out->skinned) sort_by_influence_count(out);
     return true;
 }
 
 // ---------------------------------------------------------------------------------------
 // Animations, §3.11
 
+// Morph weight slots of each output node: [begin, begin + count) of RawScene::morph_weights.
+struct MorphSlots {
+    uint32_t begin = 0;
+    uint32_t count = 0;
+};
+
 // Reads one channel; returns false with `why` (the channel is then skipped).
 bool read_channel(const Model& model, const tinygltf::Animation& anim,
                   const tinygltf::AnimationChannel& ch, const std::vector<int32_t>& out_index,
-                  RawChannel* out, std::vector<std::string>* notes, std::string* why) {
+                  const std::vector<MorphSlots>& slots, RawChannel* out,
+                  std::vector<std::string>* notes, std::string* why) {
     if (ch.sampler < 0 || size_t(ch.sampler) >= anim.samplers.size()) {
         *why = "sampler " + str(ch.sampler) + " out of range (sampler count " +
                str(anim.samplers.size()) + ")";
@@ -825,6 +938,7 @@ bool read_channel(const Model& model, const tinygltf::Animation& anim,
         *why = "target node " + str(ch.target_node) + " is not in the scene";
         return false;
     }
+    out->node = uint32_t(out_index[size_t(ch.target_node)]);
     size_t components = 3;
     if (ch.target_path == "translation") {
         out->path = RawPath::translation;
@@ -834,8 +948,16 @@ bool read_channel(const Model& model, const tinygltf::Animation& anim,
     } else if (ch.target_path == "scale") {
         out->path = RawPath::scale;
     } else if (ch.target_path == "weights") {
-        *why = "morph target weights are unsupported (coming later)";
-        return false;
+        // §3.11: the node's mesh instance's morph weights, one per target.
+        const MorphSlots& s = slots[out->node];
+        if (s.count == 0) {
+            *why = "target node " + str(ch.target_node) + " has no mesh with morph targets";
+            return false;
+        }
+        out->path = RawPath::weights;
+        out->weight_begin = s.begin;
+        out->weight_count = s.count;
+        components = s.count;
     } else {
         *why = "unknown target path '" + ch.target_path + "'";
         return false;
@@ -846,13 +968,14 @@ bool read_channel(const Model& model, const tinygltf::Animation& anim,
     } else if (sampler.interpolation == "STEP") {
         out->interp = RawInterp::step;
     } else if (sampler.interpolation == "CUBICSPLINE") {
-        *why = "CUBICSPLINE interpolation is unsupported (coming later)";
-        return false;
+        out->interp = RawInterp::cubic_spline;
     } else {
         *why = "unknown interpolation '" + sampler.interpolation + "'";
         return false;
     }
-    out->node = uint32_t(out_index[size_t(ch.target_node)]);
+    const bool cubic = out->interp == RawInterp::cubic_spline;
+    // Appendix C: a CUBICSPLINE key is (in-tangent, value, out-tangent).
+    const size_t per_key = components * (cubic ? 3 : 1);
 
     std::vector<float> times;
     std::vector<float> values;
@@ -861,18 +984,21 @@ bool read_channel(const Model& model, const tinygltf::Animation& anim,
         *why = "input: " + sub;
         return false;
     }
-    // Rotations may be normalized integers (§3.11 "Animations", accessor table); translation
-    // and scale are float.
-    const unsigned formats =
-        out->path == RawPath::rotation ? (kF32 | kI8N | kU8N | kI16N | kU16N) : kF32;
-    const int type = components == 4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3;
+    // Rotations and weights may be normalized integers (§3.11 "Animations", accessor
+    // table); translation and scale are float. Weights outputs are SCALAR, N per key.
+    const unsigned formats = out->path == RawPath::rotation || out->path == RawPath::weights
+                                 ? (kF32 | kI8N | kU8N | kI16N | kU16N)
+                                 : kF32;
+    const int type = out->path == RawPath::weights ? TINYGLTF_TYPE_SCALAR
+                     : components == 4             ? TINYGLTF_TYPE_VEC4
+                                                   : TINYGLTF_TYPE_VEC3;
     if (!read_accessor(model, sampler.output, type, formats, &values, &sub)) {
         *why = "output: " + sub;
         return false;
     }
-    if (values.size() != times.size() * components) {
-        *why = "output count " + str(values.size() / components) + " does not match input count " +
-               str(times.size());
+    if (values.size() != times.size() * per_key) {
+        *why = "output count " + str(values.size()) + " floats does not match input count " +
+               str(times.size()) + " x " + str(per_key);
         return false;
     }
     if (!all_finite(times.data(), times.size()) || !all_finite(values.data(), values.size())) {
@@ -895,24 +1021,31 @@ bool read_channel(const Model& model, const tinygltf::Animation& anim,
             ++dropped;
             continue;
         }
-        float* value = &values[k * components];
-        if (components == 4) {
-            const double len = std::sqrt(double(value[0]) * value[0] + double(value[1]) * value[1] +
-                                         double(value[2]) * value[2] + double(value[3]) * value[3]);
+        float* value = &values[k * per_key];
+        if (components == 4 && out->path == RawPath::rotation) {
+            float* q = cubic ? value + 4 : value;  // the value, not the tangents
+            const double len = std::sqrt(double(q[0]) * q[0] + double(q[1]) * q[1] +
+                                         double(q[2]) * q[2] + double(q[3]) * q[3]);
             if (!(len > 1e-6)) {
                 *why = "rotation key " + str(k) + " is not a unit quaternion";
                 return false;
             }
-            for (size_t c = 0; c < 4; ++c) value[c] = float(value[c] / len);
+            // LINEAR/STEP keys are normalised; CUBICSPLINE values stay as written, since
+            // scaling a value without its tangents would change the curve (the sampler
+            // normalises the interpolated result, Appendix C).
+            if (!cubic) {
+                for (size_t c = 0; c < 4; ++c) q[c] = float(q[c] / len);
+            }
         }
         out->times.push_back(times[k]);
-        out->values.insert(out->values.end(), value, value + components);
+        out->values.insert(out->values.end(), value, value + per_key);
     }
     if (dropped) notes->push_back(str(dropped) + " keys with duplicate times dropped");
     return true;
 }
 
 std::vector<RawClip> read_clips(const Model& model, const std::vector<int32_t>& out_index,
+                                const std::vector<MorphSlots>& slots,
                                 std::vector<std::string>* warnings) {
     std::vector<RawClip> clips;
     for (size_t a = 0; a < model.animations.size(); ++a) {
@@ -927,7 +1060,8 @@ std::vector<RawClip> read_clips(const Model& model, const std::vector<int32_t>& 
             RawChannel channel;
             std::vector<std::string> notes;
             std::string why;
-            if (!read_channel(model, anim, anim.channels[c], out_index, &channel, &notes, &why)) {
+            if (!read_channel(model, anim, anim.channels[c], out_index, slots, &channel, &notes,
+                              &why)) {
                 warnings->push_back(channel_label + ": " + why + "; channel skipped");
                 continue;
             }
@@ -1171,7 +1305,54 @@ bool import_model(const Model& model, RawScene* scene, std::string* err) {
         }
     }
 
-    std::vector<RawClip> clips = read_clips(model, out_index, &warnings);
+    // Morph weight slots (§3.7.2.2): every node drawing a mesh with morph targets owns one
+    // slot per target. Defaults: the node's weights, else the mesh's, else 0.
+    std::vector<MorphSlots> slots(order.size());
+    std::vector<float> morph_weights;
+    std::vector<uint32_t> morph_weight_nodes;
+    for (size_t oi = 0; oi < order.size(); ++oi) {
+        const tinygltf::Node& node = model.nodes[order[oi]];
+        if (node.mesh < 0 || size_t(node.mesh) >= model.meshes.size()) continue;
+        const tinygltf::Mesh& mesh = model.meshes[size_t(node.mesh)];
+        size_t count = 0;
+        for (const tinygltf::Primitive& prim : mesh.primitives) {
+            count = std::max(count, prim.targets.size());
+        }
+        if (count == 0) continue;
+        const std::string label = "node " + str(order[oi]) + " (mesh " + str(node.mesh) + ")";
+        for (const tinygltf::Primitive& prim : mesh.primitives) {
+            if (prim.targets.size() != count) {
+                // §3.7.2.2: all primitives MUST have the same number of targets.
+                warnings.push_back(label + ": primitives have different morph target counts; "
+                                   "target i of every primitive uses weight i");
+                break;
+            }
+        }
+        const std::vector<double>* defaults = nullptr;
+        if (node.weights.size() == count) {
+            defaults = &node.weights;
+        } else if (mesh.weights.size() == count) {
+            defaults = &mesh.weights;
+        }
+        if ((!node.weights.empty() && node.weights.size() != count) ||
+            (!mesh.weights.empty() && mesh.weights.size() != count && defaults == nullptr)) {
+            warnings.push_back(label + ": default morph weights do not match its " + str(count) +
+                               " targets; ignored");
+        }
+        slots[oi] = {uint32_t(morph_weights.size()), uint32_t(count)};
+        for (size_t i = 0; i < count; ++i) {
+            double w = defaults != nullptr ? (*defaults)[i] : 0.0;
+            if (!std::isfinite(w) || std::abs(w) > 1e30) {
+                warnings.push_back(label + ": default morph weight " + str(i) +
+                                   " is not finite; 0 used");
+                w = 0.0;
+            }
+            morph_weights.push_back(float(w));
+            morph_weight_nodes.push_back(uint32_t(oi));
+        }
+    }
+
+    std::vector<RawClip> clips = read_clips(model, out_index, slots, &warnings);
     const bool animated = has_skin || !clips.empty();
 
     // Meshes of every node, in output node order.
@@ -1214,11 +1395,26 @@ bool import_model(const Model& model, RawScene* scene, std::string* err) {
             }
             const size_t base = scene->vertex_count();
             const size_t count = prim.positions.size() / 3;
+            const MorphSlots& node_slots = slots[oi];
             if (count > std::numeric_limits<uint32_t>::max() - base) {
                 *err = "more than 2^32 vertices";
                 return false;
             }
             if (!animated) {
+                // Static: bake the default morph weights (§3.7.2.2), then the world transform.
+                for (size_t t = 0; t < prim.target_positions.size() && t < node_slots.count;
+                     ++t) {
+                    const float w = morph_weights[node_slots.begin + t];
+                    if (w == 0.0f) continue;
+                    for (size_t i = 0; i < count * 3; ++i) {
+                        prim.positions[i] += w * prim.target_positions[t][i];
+                    }
+                    if (!prim.target_normals[t].empty()) {
+                        for (size_t i = 0; i < count * 3; ++i) {
+                            prim.normals[i] += w * prim.target_normals[t][i];
+                        }
+                    }
+                }
                 // Static: bake the world transform. Normals use the cofactor matrix
                 // (det * inverse transpose, valid even for singular matrices), sign-fixed;
                 // a mirroring transform flips the winding to keep triangles front-facing.
@@ -1255,6 +1451,22 @@ bool import_model(const Model& model, RawScene* scene, std::string* err) {
                 }
                 continue;
             }
+            // Morph targets over this primitive's vertex range; all-zero targets are dropped.
+            for (size_t t = 0; t < prim.target_positions.size() && t < node_slots.count; ++t) {
+                auto nonzero = [](const std::vector<float>& v) {
+                    return std::any_of(v.begin(), v.end(), [](float x) { return x != 0.0f; });
+                };
+                const bool has_p = nonzero(prim.target_positions[t]);
+                const bool has_n = nonzero(prim.target_normals[t]);
+                if (!has_p && !has_n) continue;
+                RawMorphTarget target;
+                target.weight = uint32_t(node_slots.begin + t);
+                target.vertex_begin = uint32_t(base);
+                target.vertex_count = uint32_t(count);
+                target.position_deltas = std::move(prim.target_positions[t]);
+                if (has_n) target.normal_deltas = std::move(prim.target_normals[t]);
+                scene->morph_targets.push_back(std::move(target));
+            }
             scene->positions.insert(scene->positions.end(), prim.positions.begin(),
                                     prim.positions.end());
             scene->normals.insert(scene->normals.end(), prim.normals.begin(), prim.normals.end());
@@ -1289,6 +1501,19 @@ bool import_model(const Model& model, RawScene* scene, std::string* err) {
         scene->joint_nodes = std::move(joint_nodes);
         scene->inverse_bind = std::move(inverse_bind);
         scene->clips = std::move(clips);
+        if (!scene->morph_targets.empty()) {
+            scene->morph_weights = std::move(morph_weights);
+            scene->morph_weight_nodes = std::move(morph_weight_nodes);
+        } else {
+            // No target survived: weights channels would animate nothing.
+            for (RawClip& clip : scene->clips) {
+                clip.channels.erase(std::remove_if(clip.channels.begin(), clip.channels.end(),
+                                                   [](const RawChannel& c) {
+                                                       return c.path == RawPath::weights;
+                                                   }),
+                                    clip.channels.end());
+            }
+        }
     }
     return true;
 }

@@ -7,8 +7,9 @@
 
 namespace stipple::bake {
 
-enum class RawPath : uint8_t { translation = 0, rotation = 1, scale = 2 };
-enum class RawInterp : uint8_t { step = 0, linear = 1 };
+// Same values as anim::Path / anim::Interp (glTF 2.0 §3.11 target paths and samplers).
+enum class RawPath : uint8_t { translation = 0, rotation = 1, scale = 2, weights = 3 };
+enum class RawInterp : uint8_t { step = 0, linear = 1, cubic_spline = 2 };
 
 // One node of the scene graph. Nodes are stored parents-before-children, so a single
 // forward pass computes world transforms. Rotation is a unit quaternion (x, y, z, w).
@@ -20,20 +21,47 @@ struct RawNode {
     std::string name;
 };
 
-// One animated property of one node: key times (seconds, strictly increasing) and
-// values (3 floats per key for translation/scale, 4 for rotation xyzw).
+// One animated property of one node: key times (seconds, strictly increasing) and values.
+// A key's value is `width` floats: 3 for translation/scale, 4 for rotation (x, y, z, w),
+// weight_count for weights. STEP/LINEAR: values = times.size() * width. CUBICSPLINE:
+// values = times.size() * 3 * width, glTF's layout kept as is: per key the in-tangent, the
+// value, the out-tangent (Appendix C; tangents are per second, not yet scaled by the key gap).
+// LINEAR/STEP rotation keys are normalised by the importer; CUBICSPLINE values are kept
+// exactly as in the file (the sampler normalises its result).
+// A weights channel animates the morph weight slots [weight_begin, weight_begin +
+// weight_count) of RawScene::morph_weights, the slots of `node`'s mesh instance; both are 0
+// for the other paths.
 struct RawChannel {
     uint32_t node = 0;
     RawPath path = RawPath::translation;
     RawInterp interp = RawInterp::linear;
     std::vector<float> times;
     std::vector<float> values;
+    uint32_t weight_begin = 0;
+    uint32_t weight_count = 0;
 };
 
 struct RawClip {
     std::string name;
     float duration = 0.0f;  // last key time over all channels
     std::vector<RawChannel> channels;
+};
+
+// One morph target of one primitive of the merged mesh (glTF 2.0 §3.7.2.2): deltas for the
+// contiguous vertex range [vertex_begin, vertex_begin + vertex_count) (the whole primitive
+// as imported), scaled at runtime by morph weight slot `weight`:
+//   position = base + sum over targets of morph weight[target.weight] * position delta
+// (normals likewise, renormalised after skinning). A mesh with N targets drawn by a node
+// owns N consecutive slots; each of its primitives contributes up to N targets, target i
+// of every primitive using slot (first slot of the node) + i. Targets whose deltas are all
+// zero are not stored. Deltas are in the same space as `positions` (bind space or node
+// space, see RawScene).
+struct RawMorphTarget {
+    uint32_t weight = 0;                 // index into RawScene::morph_weights
+    uint32_t vertex_begin = 0;
+    uint32_t vertex_count = 0;
+    std::vector<float> position_deltas;  // 3 * vertex_count
+    std::vector<float> normal_deltas;    // 3 * vertex_count, or empty (no NORMAL deltas)
 };
 
 // The whole input, flattened into one triangle mesh.
@@ -47,6 +75,15 @@ struct RawClip {
 //     in the node's local space, and joints = (j,0,0,0), weights = (1,0,0,0).
 // If the scene is static (no skin, no clips), positions are in world space and
 // `joints`, `weights`, `joint_nodes`, `inverse_bind` and `clips` are empty.
+//
+// Skinned primitives have their vertices sorted by influence count (4, 3, 2, 1 non-zero
+// weights), so the skinning job's blocks mostly run the cheaper kernels.
+//
+// Morph targets (animated scenes only; a static scene has its default weights applied to
+// `positions`/`normals` and no targets): `morph_targets` over the merged vertex array,
+// `morph_weights` the default weight of every slot (node.weights, else mesh.weights, else
+// 0), `morph_weight_nodes` the node owning each slot (slots of one node are consecutive).
+// The runtime applies them before skinning; weights channels animate the slots.
 struct RawScene {
     std::vector<float> positions;  // 3 per vertex
     std::vector<float> normals;    // 3 per vertex, unit length (computed if the input has none)
@@ -59,6 +96,10 @@ struct RawScene {
     std::vector<uint32_t> joint_nodes;   // node index of each joint
     std::vector<float> inverse_bind;     // 16 per joint, column-major
     std::vector<RawClip> clips;
+
+    std::vector<RawMorphTarget> morph_targets;
+    std::vector<float> morph_weights;          // default weight per slot
+    std::vector<uint32_t> morph_weight_nodes;  // node (index into nodes) owning each slot
 
     std::vector<std::string> warnings;   // things skipped or repaired, for the bake log
 
