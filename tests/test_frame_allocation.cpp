@@ -14,10 +14,15 @@
 #include "platform/headless_context.h"
 #include "runtime/frame_pipeline.h"
 
-namespace {
+#include "tests/alloc_counter.h"
+
+// The one definition of the shared counters (tests/alloc_counter.h).
+namespace stipple::test {
 std::atomic<bool> g_counting{false};
 std::atomic<long> g_allocations{0};
-}  // namespace
+}  // namespace stipple::test
+using stipple::test::g_allocations;
+using stipple::test::g_counting;
 
 void* operator new(std::size_t size) {
     if (g_counting) ++g_allocations;
