@@ -1,195 +1,280 @@
-// Benchmarks for anim/: one frame's pose (sample_clip + local_to_model + joint_matrices) for a
-// synthetic 20-joint skeleton with a 30-key clip, and linear blend skinning of 3,273 vertices
-// (CesiumMan's count) and 100,000 vertices. Skinning reports ns per vertex and bytes streamed,
-// to compare with memory bandwidth (~15 GB/s single-threaded on the reference machine).
+// Benchmarks for anim/, per unit of work, on CesiumMan (assets/CesiumMan/CesiumMan.glb via
+// bake::import_gltf: 22 nodes, 19 joints, 57 LINEAR channels of 49 keys, 3,273 vertices) and
+// on a 100k-vertex mesh made of 31 copies of CesiumMan's (101,463 vertices, the size
+// PLATFORM-NOTES measured ozz-animation on), plus a worst case of 100,000 random vertices
+// with 4 influences each.
+//
+//   BM_Sample: SamplingJob with a context, looping playback at 60 fps: ns per joint.
+//   BM_Pose:   sampling + LocalToModelJob + JointMatrixJob: ns per joint.
+//   BM_Skin/<mesh>/<method>: SkinningJob, positions and normals: ns per vertex, for LBS and
+//              DQS, SIMD (run) and scalar (run_scalar); `bound_ns` is the time to stream the
+//              bytes a vertex touches (joints 8 + weights 16 + position and normal in 24 + out
+//              24 = 72 bytes) at the read bandwidth BM_StreamRead measures in the same run,
+//              and `x_bound` the ratio measured / bound (1.0 = memory-bound).
+//   BM_Frame:  CesiumMan, sample + hierarchy + LBS skinning: the figure to hold against
+//              ozz's 10.6 us per frame (PLATFORM-NOTES).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "anim/anim.h"
+#include "bake/raw_anim_view.h"
+#include "bake/scene_import.h"
 
 namespace {
 
 using namespace stipple::anim;
 
-constexpr uint32_t kJoints = 20;
-constexpr uint32_t kKeys = 30;
-constexpr float kDuration = 1.0f;
+constexpr double kBytesPerVertex = 4 * 2 + 4 * 4 + 2 * 3 * 4 + 2 * 3 * 4;
 
-// Bytes each skinned vertex streams: joints (4 x u16) + weights (4 x f32) + position and normal
-// in (2 x 3 x f32) + position and normal out (2 x 3 x f32).
-constexpr int64_t kBytesPerVertex = 4 * 2 + 4 * 4 + 2 * 3 * 4 + 2 * 3 * 4;
+// Single-thread read bandwidth over a 256 MiB buffer (well past the caches), bytes/second.
+double read_bandwidth() {
+    static double bandwidth = [] {
+        const size_t n = (size_t(256) << 20) / sizeof(float);
+        std::vector<float> data(n, 1.0f);
+        double best = 0;
+        for (int rep = 0; rep < 5; ++rep) {
+            const auto start = std::chrono::steady_clock::now();
+            // 8 independent sums so the adds are not the bottleneck (vectorised at -O3).
+            float s[8] = {};
+            for (size_t i = 0; i < n; i += 8) {
+                for (int k = 0; k < 8; ++k) s[k] += data[i + size_t(k)];
+            }
+            benchmark::DoNotOptimize(s);
+            const double seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            best = std::max(best, double(n * sizeof(float)) / seconds);
+        }
+        std::fprintf(stderr, "read bandwidth (one thread, 256 MiB): %.2f GB/s; SIMD path: %s\n",
+                     best / 1e9, simd_path());
+        return best;
+    }();
+    return bandwidth;
+}
 
-// A 20-node tree (parent of i is (i - 1) / 2), every node one joint, and a clip animating the
-// translation, rotation and scale of every node with 30 keys each (60 channels).
-struct SyntheticRig {
-    std::vector<int32_t> parents;
-    std::vector<Trs> rest;
-    std::vector<uint32_t> joint_nodes;
-    std::vector<float> inverse_bind;
-    std::vector<float> times;
-    std::vector<float> translations;
-    std::vector<float> rotations;
-    std::vector<float> scales;
-    std::vector<Channel> channels;
-    Skeleton skeleton{};
-    Clip clip{};
+void BM_StreamRead(benchmark::State& state) {
+    for (auto _ : state) benchmark::DoNotOptimize(read_bandwidth());
+    state.counters["GB_per_s"] = read_bandwidth() / 1e9;
+}
+BENCHMARK(BM_StreamRead)->Iterations(1);
 
-    SyntheticRig() {
-        std::mt19937 rng(1234);
-        std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-        for (uint32_t i = 0; i < kJoints; ++i) {
-            parents.push_back(i == 0 ? -1 : static_cast<int32_t>((i - 1) / 2));
-            rest.push_back(Trs{{0, 0.5f, 0}, {0, 0, 0, 1}, {1, 1, 1}});
-            joint_nodes.push_back(i);
-            const float ib[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -0.5f * i, 0, 1};
-            inverse_bind.insert(inverse_bind.end(), ib, ib + 16);
+struct Cesium {
+    stipple::bake::RawScene scene;
+    stipple::bake::RawAnimView view;
+    Cesium() {
+        std::string error;
+        if (!stipple::bake::import_gltf(
+                std::string(STIPPLE_SOURCE_DIR) + "/assets/CesiumMan/CesiumMan.glb", &scene,
+                &error)) {
+            std::fprintf(stderr, "%s\n", error.c_str());
+            std::abort();
         }
-        for (uint32_t k = 0; k < kKeys; ++k) times.push_back(kDuration * k / (kKeys - 1));
-        for (uint32_t i = 0; i < kJoints * kKeys; ++i) {
-            translations.insert(translations.end(), {0.1f * u(rng), 0.5f + 0.1f * u(rng), 0});
-            float q[4] = {u(rng), u(rng), u(rng), 2.0f + u(rng)};
-            const float len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-            for (float& c : q) c /= len;
-            rotations.insert(rotations.end(), q, q + 4);
-            const float s = 1.0f + 0.05f * u(rng);
-            scales.insert(scales.end(), {s, s, s});
-        }
-        for (uint32_t i = 0; i < kJoints; ++i) {
-            channels.push_back({i, Path::translation, Interp::linear, kKeys, times.data(),
-                                translations.data() + 3 * kKeys * i});
-            channels.push_back({i, Path::rotation, Interp::linear, kKeys, times.data(),
-                                rotations.data() + 4 * kKeys * i});
-            channels.push_back({i, Path::scale, Interp::linear, kKeys, times.data(),
-                                scales.data() + 3 * kKeys * i});
-        }
-        skeleton = Skeleton{kJoints, parents.data(),     rest.data(),
-                            kJoints, joint_nodes.data(), inverse_bind.data()};
-        clip =
-            Clip{"synthetic", kDuration, static_cast<uint32_t>(channels.size()), channels.data()};
+        stipple::bake::make_anim_view(scene, &view);
     }
 };
 
-// Random mesh: 4 influences per vertex on random joints, weights summing to 1, unit normals.
-struct SyntheticMesh {
-    std::vector<uint16_t> joints;
-    std::vector<float> weights;
-    std::vector<float> positions;
-    std::vector<float> normals;
-    std::vector<float> out_positions;
-    std::vector<float> out_normals;
+const Cesium& cesium() {
+    static const Cesium c;
+    return c;
+}
 
-    explicit SyntheticMesh(uint32_t n)
-        : joints(4 * size_t{n}),
-          weights(4 * size_t{n}),
-          positions(3 * size_t{n}),
-          normals(3 * size_t{n}),
-          out_positions(3 * size_t{n}),
-          out_normals(3 * size_t{n}) {
-        std::mt19937 rng(42);
-        std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-        std::uniform_int_distribution<int> joint(0, kJoints - 1);
-        for (size_t v = 0; v < n; ++v) {
-            float sum = 0;
-            for (int k = 0; k < 4; ++k) {
-                joints[4 * v + k] = static_cast<uint16_t>(joint(rng));
-                weights[4 * v + k] = u(rng) + 1.0f;
-                sum += weights[4 * v + k];
-            }
-            for (int k = 0; k < 4; ++k) weights[4 * v + k] /= sum;
-            float nrm[3] = {u(rng), u(rng), u(rng) + 2.0f};
-            const float len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
-            for (int c = 0; c < 3; ++c) {
-                positions[3 * v + c] = u(rng);
-                normals[3 * v + c] = nrm[c] / len;
-            }
-        }
-    }
-
-    SkinJob job(const glm::mat4* skin) {
-        return SkinJob{static_cast<uint32_t>(joints.size() / 4),
-                       skin,
-                       kJoints,
-                       joints.data(),
-                       weights.data(),
-                       positions.data(),
-                       normals.data(),
-                       out_positions.data(),
-                       out_normals.data()};
-    }
-};
-
-// Per-frame pose: sample all 60 channels, then model and skin matrices for 20 joints.
-void BM_Pose(benchmark::State& state) {
-    SyntheticRig rig;
-    Trs locals[kJoints];
-    glm::mat4 model[kJoints];
-    glm::mat4 skin[kJoints];
-    float t = 0.0f;
+void BM_Sample(benchmark::State& state) {
+    const Cesium& c = cesium();
+    const Skeleton& k = c.view.skeleton;
+    std::vector<Trs> locals(k.node_count);
+    std::vector<uint32_t> cursors(c.view.clips[0].channel_count);
+    SamplingContext context;
+    context.cursors = {cursors.data(), cursors.size()};
+    SamplingJob job;
+    job.skeleton = &k;
+    job.clip = &c.view.clips[0];
+    job.wrap = Wrap::loop;
+    job.context = &context;
+    job.locals = {locals.data(), locals.size()};
+    float t = 0;
     for (auto _ : state) {
-        sample_clip(rig.skeleton, rig.clip, t, locals);
-        local_to_model(rig.skeleton, locals, model);
-        joint_matrices(rig.skeleton, model, skin);
-        benchmark::DoNotOptimize(skin);
+        job.time = t;
+        job.run();
         benchmark::ClobberMemory();
         t += 1.0f / 60.0f;
-        if (t > kDuration) t -= kDuration;
     }
-    // Joints per second, inverted: seconds per joint (the console prints e.g. "46ns").
     state.counters["per_joint"] = benchmark::Counter(
-        kJoints, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+        k.joint_count, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["per_channel"] =
+        benchmark::Counter(c.view.clips[0].channel_count,
+                           benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_Sample);
+
+struct PoseBuffers {
+    std::vector<Trs> locals;
+    std::vector<glm::mat4> models, palette;
+    std::vector<uint32_t> cursors;
+    SamplingContext context;
+    explicit PoseBuffers(const Cesium& c)
+        : locals(c.view.skeleton.node_count),
+          models(c.view.skeleton.node_count),
+          palette(c.view.skeleton.joint_count),
+          cursors(c.view.clips[0].channel_count) {
+        context.cursors = {cursors.data(), cursors.size()};
+    }
+    void pose(const Cesium& c, float t) {
+        SamplingJob s;
+        s.skeleton = &c.view.skeleton;
+        s.clip = &c.view.clips[0];
+        s.wrap = Wrap::loop;
+        s.time = t;
+        s.context = &context;
+        s.locals = {locals.data(), locals.size()};
+        s.run();
+        LocalToModelJob l;
+        l.skeleton = &c.view.skeleton;
+        l.locals = {locals.data(), locals.size()};
+        l.models = {models.data(), models.size()};
+        l.run();
+        JointMatrixJob j;
+        j.skeleton = &c.view.skeleton;
+        j.models = {models.data(), models.size()};
+        j.joint_matrices = {palette.data(), palette.size()};
+        j.run();
+    }
+};
+
+void BM_Pose(benchmark::State& state) {
+    const Cesium& c = cesium();
+    PoseBuffers b(c);
+    float t = 0;
+    for (auto _ : state) {
+        b.pose(c, t);
+        benchmark::ClobberMemory();
+        t += 1.0f / 60.0f;
+    }
+    state.counters["per_joint"] =
+        benchmark::Counter(c.view.skeleton.joint_count,
+                           benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_Pose);
 
-// Skinning alone, from a fixed pose.
-void BM_SkinLbs(benchmark::State& state) {
-    const uint32_t n = static_cast<uint32_t>(state.range(0));
-    SyntheticRig rig;
-    SyntheticMesh mesh(n);
-    Trs locals[kJoints];
-    glm::mat4 model[kJoints];
-    glm::mat4 skin[kJoints];
-    sample_clip(rig.skeleton, rig.clip, 0.37f, locals);
-    local_to_model(rig.skeleton, locals, model);
-    joint_matrices(rig.skeleton, model, skin);
-    const SkinJob job = mesh.job(skin);
+// Skinning inputs: CesiumMan's mesh, 31 copies of it, or random 4-influence vertices.
+struct SkinMesh {
+    std::vector<uint16_t> joints;
+    std::vector<float> weights, positions, normals, out_p, out_n;
+    uint32_t count() const { return uint32_t(positions.size() / 3); }
+};
+
+const SkinMesh& skin_mesh(int which) {
+    static SkinMesh meshes[3];
+    SkinMesh& m = meshes[which];
+    if (!m.positions.empty()) return m;
+    const Cesium& c = cesium();
+    if (which < 2) {
+        const int copies = which == 0 ? 1 : 31;
+        for (int i = 0; i < copies; ++i) {
+            m.joints.insert(m.joints.end(), c.scene.joints.begin(), c.scene.joints.end());
+            m.weights.insert(m.weights.end(), c.scene.weights.begin(), c.scene.weights.end());
+            m.positions.insert(m.positions.end(), c.scene.positions.begin(), c.scene.positions.end());
+            m.normals.insert(m.normals.end(), c.scene.normals.begin(), c.scene.normals.end());
+        }
+    } else {
+        std::mt19937 rng(42);
+        std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+        for (int v = 0; v < 100000; ++v) {
+            float w[4], sum = 0;
+            for (float& x : w) sum += (x = u(rng) + 1.1f);
+            for (int k = 0; k < 4; ++k) {
+                m.joints.push_back(uint16_t(rng() % c.view.skeleton.joint_count));
+                m.weights.push_back(w[k] / sum);
+            }
+            float n[3] = {u(rng), u(rng), u(rng) + 2};
+            const float l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            for (int k = 0; k < 3; ++k) {
+                m.positions.push_back(u(rng));
+                m.normals.push_back(n[k] / l);
+            }
+        }
+    }
+    m.out_p.resize(m.positions.size());
+    m.out_n.resize(m.normals.size());
+    return m;
+}
+
+// Arguments: mesh (0 CesiumMan, 1 CesiumMan x31, 2 random 4-influence 100k), method
+// (0 LBS SIMD, 1 LBS scalar, 2 DQS SIMD, 3 DQS scalar).
+void BM_Skin(benchmark::State& state) {
+    const Cesium& c = cesium();
+    SkinMesh& m = const_cast<SkinMesh&>(skin_mesh(int(state.range(0))));
+    const int method = int(state.range(1));
+    PoseBuffers b(c);
+    b.pose(c, 0.37f);
+    std::vector<DqsJoint> dq(b.palette.size());
+    uint32_t stretched = 0;
+    dqs_joints({b.palette.data(), b.palette.size()}, {dq.data(), dq.size()}, &stretched);
+    SkinningJob job;
+    job.method = method >= 2 ? Skinning::dqs : Skinning::lbs;
+    job.vertex_count = m.count();
+    job.joint_matrices = {b.palette.data(), b.palette.size()};
+    job.dq_joints = {dq.data(), dq.size()};
+    job.dq_rigid = stretched == 0;
+    job.joints = {m.joints.data(), m.joints.size()};
+    job.weights = {m.weights.data(), m.weights.size()};
+    job.in_positions = {m.positions.data(), m.positions.size()};
+    job.in_normals = {m.normals.data(), m.normals.size()};
+    job.out_positions = {m.out_p.data(), m.out_p.size()};
+    job.out_normals = {m.out_n.data(), m.out_n.size()};
+    const bool scalar = method % 2 == 1;
+    const auto start = std::chrono::steady_clock::now();
     for (auto _ : state) {
-        skin_lbs(job);
+        if (scalar) {
+            job.run_scalar();
+        } else {
+            job.run();
+        }
         benchmark::ClobberMemory();
     }
-    benchmark::DoNotOptimize(mesh.out_positions.data());
-    state.SetBytesProcessed(state.iterations() * int64_t{n} * kBytesPerVertex);
-    // Vertices per second, inverted: seconds per vertex (the console prints e.g. "6.6ns"; JSON
-    // output holds seconds).
+    const double ns_per_vertex =
+        std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count() /
+        (double(state.iterations()) * m.count());
     state.counters["per_vertex"] = benchmark::Counter(
-        n, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+        m.count(), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    const double bound_ns = kBytesPerVertex / read_bandwidth() * 1e9;
+    state.counters["bound_ns"] = bound_ns;
+    state.counters["x_bound"] = ns_per_vertex / bound_ns;
+    state.SetBytesProcessed(int64_t(state.iterations()) * int64_t(m.count()) * int64_t(kBytesPerVertex));
+    state.SetLabel(std::string(method >= 2 ? "dqs" : "lbs") + (scalar ? "_scalar" : "_simd") +
+                   (stretched ? " stretched" : ""));
 }
-BENCHMARK(BM_SkinLbs)->Arg(3273)->Arg(100000);
+BENCHMARK(BM_Skin)->ArgsProduct({{0, 1, 2}, {0, 1, 2, 3}});
 
-// A whole frame for a CesiumMan-sized character: pose + skin 3,273 vertices.
 void BM_Frame(benchmark::State& state) {
-    const uint32_t n = static_cast<uint32_t>(state.range(0));
-    SyntheticRig rig;
-    SyntheticMesh mesh(n);
-    Trs locals[kJoints];
-    glm::mat4 model[kJoints];
-    glm::mat4 skin[kJoints];
-    const SkinJob job = mesh.job(skin);
-    float t = 0.0f;
+    const Cesium& c = cesium();
+    PoseBuffers b(c);
+    const SkinMesh& m = skin_mesh(0);
+    std::vector<float> out_p(m.positions.size()), out_n(m.normals.size());
+    SkinningJob job;
+    job.vertex_count = m.count();
+    job.joint_matrices = {b.palette.data(), b.palette.size()};
+    job.joints = {m.joints.data(), m.joints.size()};
+    job.weights = {m.weights.data(), m.weights.size()};
+    job.in_positions = {m.positions.data(), m.positions.size()};
+    job.in_normals = {m.normals.data(), m.normals.size()};
+    job.out_positions = {out_p.data(), out_p.size()};
+    job.out_normals = {out_n.data(), out_n.size()};
+    float t = 0;
     for (auto _ : state) {
-        sample_clip(rig.skeleton, rig.clip, t, locals);
-        local_to_model(rig.skeleton, locals, model);
-        joint_matrices(rig.skeleton, model, skin);
-        skin_lbs(job);
+        b.pose(c, t);
+        job.run();
         benchmark::ClobberMemory();
         t += 1.0f / 60.0f;
-        if (t > kDuration) t -= kDuration;
     }
-    state.SetBytesProcessed(state.iterations() * int64_t{n} * kBytesPerVertex);
 }
-BENCHMARK(BM_Frame)->Arg(3273);
+BENCHMARK(BM_Frame);
 
 }  // namespace
