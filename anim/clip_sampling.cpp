@@ -17,7 +17,7 @@ constexpr uint32_t kCursorScan = 4;
 // Index k of the key interval holding t: times[k] <= t < times[k + 1]; 0 when t is before
 // the first key, key_count - 1 at or after the last. `k` is the cursor from the previous
 // sample (any value; out-of-range cursors restart at 0).
-uint32_t seek(const float* times, uint32_t n, float t, uint32_t k) {
+inline uint32_t seek(const float* times, uint32_t n, float t, uint32_t k) {
     if (k >= n) k = 0;
     if (t >= times[k]) {
         for (uint32_t step = 0; step < kCursorScan; ++step) {
@@ -126,7 +126,7 @@ void cubic(const float* values, uint32_t k, uint32_t width, float s, float td, f
 }
 
 // Samples one channel at t into `out` (width floats). Returns the new cursor.
-uint32_t sample_channel(const Channel& channel, uint32_t width, float t, uint32_t cursor,
+inline uint32_t sample_channel(const Channel& channel, uint32_t width, float t, uint32_t cursor,
                         float* out) {
     const uint32_t n = channel.key_count;
     const uint32_t k = seek(channel.times, n, t, cursor);
