@@ -207,7 +207,7 @@ STIPPLE_F4_OP(sub, a.v[i] - b.v[i])
 STIPPLE_F4_OP(mul, a.v[i] * b.v[i])
 STIPPLE_F4_OP(div, a.v[i] / b.v[i])
 STIPPLE_F4_OP(max, a.v[i] > b.v[i] ? a.v[i] : b.v[i])
-STIPPLE_F4_OP(flip_sign, std::signbit(b.v[i]) ? -a.v[i] : a.v[i])
+STIPPLE_F4_OP(flip_sign, b.v[i] < 0.0f ? -a.v[i] : a.v[i])  // (std::signbit here trips a GCC 12 ICE)
 #undef STIPPLE_F4_OP
 inline f4 madd(f4 a, f4 b, f4 c) { return add(mul(a, b), c); }
 inline f4 sqrt(f4 a) { return f4{{std::sqrt(a.v[0]), std::sqrt(a.v[1]), std::sqrt(a.v[2]), std::sqrt(a.v[3])}}; }
