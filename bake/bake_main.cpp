@@ -117,10 +117,9 @@ int main(int argc, char** argv) {
     RawScene scene;
     std::string error;
     if (!import_scene(o.input, &scene, &error)) die(error);
+    assign_normals(o.normals, &scene);
     if (!o.quiet)
         for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-
-    assign_normals(o.normals, &scene);
 
     Progress progress;
     progress.quiet = o.quiet;

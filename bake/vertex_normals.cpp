@@ -53,6 +53,12 @@ bool parse_normal_mode(const std::string& text, NormalMode* out) {
 size_t assign_normals(const NormalConfig& config, RawScene* scene) {
     RawScene& s = *scene;
     if (config.mode == NormalMode::input || s.triangle_count() == 0) return 0;
+    if (!s.morph_targets.empty()) {
+        // Targets cover contiguous vertex ranges; split copies would fall outside them.
+        s.warnings.push_back(
+            "morph targets present: --normals ignored, the input normals are kept");
+        return 0;
+    }
     const double cos_crease = config.mode == NormalMode::flat ? 2.0  // nothing is smooth
                               : config.mode == NormalMode::smooth
                                   ? -2.0  // everything is smooth
@@ -106,35 +112,41 @@ size_t assign_normals(const NormalConfig& config, RawScene* scene) {
         for (int i = 0; i < 3; ++i) g[size_t(i)] += normal[c / 3][size_t(i)];
     }
 
-    // A new vertex per (input vertex, group); triangles are rewritten in place.
-    RawScene out = s;
-    out.positions.clear();
-    out.normals.clear();
-    out.joints.clear();
-    out.weights.clear();
-    std::map<std::pair<uint32_t, uint32_t>, uint32_t> vertex_of;
-    for (uint32_t c = 0; c < tris * 3; ++c) {
-        uint32_t v = s.indices[c], group = find(parent, c);
-        auto [it, added] = vertex_of.emplace(std::make_pair(v, group), uint32_t(vertex_of.size()));
-        out.indices[c] = it->second;
-        if (!added) continue;
+    // Each input vertex keeps its index for the first smoothing group that uses it (so the
+    // importer's vertex order, sorted by influence count, survives); further groups get
+    // copies appended after the input vertices.
+    const size_t before = s.vertex_count();
+    std::vector<int64_t> first_group(before, -1);
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> copy_of;
+    auto set_normal = [&](uint32_t vertex, uint32_t group) {
         const Vec3& n = group_normal[group];
         double len = length(n);
+        if (len > 0)
+            for (int i = 0; i < 3; ++i)
+                s.normals[size_t(vertex) * 3 + size_t(i)] = float(n[size_t(i)] / len);
+    };
+    for (uint32_t c = 0; c < tris * 3; ++c) {
+        uint32_t v = s.indices[c], group = find(parent, c);
+        if (first_group[v] < 0 || first_group[v] == int64_t(group)) {
+            first_group[v] = group;
+            set_normal(v, group);
+            continue;
+        }
+        auto [it, added] = copy_of.emplace(std::make_pair(v, group), uint32_t(s.vertex_count()));
+        s.indices[c] = it->second;
+        if (!added) continue;
         for (int i = 0; i < 3; ++i) {
-            out.positions.push_back(s.positions[size_t(v) * 3 + size_t(i)]);
-            out.normals.push_back(len > 0 ? float(n[size_t(i)] / len)
-                                          : s.normals[size_t(v) * 3 + size_t(i)]);
+            s.positions.push_back(s.positions[size_t(v) * 3 + size_t(i)]);
+            s.normals.push_back(0.0f);
         }
-        if (!s.joints.empty()) {
-            out.joints.insert(out.joints.end(), &s.joints[size_t(v) * 4],
-                              &s.joints[size_t(v) * 4] + 4);
-            out.weights.insert(out.weights.end(), &s.weights[size_t(v) * 4],
-                               &s.weights[size_t(v) * 4] + 4);
-        }
+        set_normal(it->second, group);
+        if (!s.joints.empty())
+            for (int i = 0; i < 4; ++i) {
+                s.joints.push_back(s.joints[size_t(v) * 4 + size_t(i)]);
+                s.weights.push_back(s.weights[size_t(v) * 4 + size_t(i)]);
+            }
     }
-    size_t before = s.vertex_count();
-    s = std::move(out);
-    return s.vertex_count() > before ? s.vertex_count() - before : 0;
+    return s.vertex_count() - before;
 }
 
 }  // namespace stipple::bake
