@@ -1,7 +1,10 @@
 #include "bake/asset_writer.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <map>
 
 #include "bake/point_codec_encode.h"
 #include "bake/silhouette_edges.h"
@@ -57,10 +60,23 @@ std::vector<uint8_t> skin_section(const RawScene& s) {
     return b.v;
 }
 
+// Columns of a channel's key value: width floats, three times that for CUBICSPLINE.
+uint32_t channel_columns(const RawChannel& ch) {
+    uint32_t width = ch.path == RawPath::rotation  ? 4
+                     : ch.path == RawPath::weights ? ch.weight_count
+                                                   : 3;
+    return ch.interp == RawInterp::cubic_spline ? width * 3 : width;
+}
+
+// Version 2 CLIP section (runtime/asset_format.h ChannelRecordV2): indexed key times and
+// 16-bit values over per-column ranges. Error per value <= (max - min) / 131070.
 std::vector<uint8_t> clip_section(const RawScene& s) {
     std::vector<format::ClipRecord> clips;
-    std::vector<format::ChannelRecord> channels;
-    std::vector<float> pool;
+    std::vector<format::ChannelRecordV2> channels;
+    std::vector<format::TimeArrayRecord> time_arrays;
+    std::vector<float> times, ranges;
+    std::vector<uint16_t> codes;
+    std::map<std::vector<float>, uint32_t> time_index;
     std::string names;
     for (const RawClip& c : s.clips) {
         clips.push_back({uint32_t(names.size()), uint32_t(channels.size()),
@@ -68,47 +84,79 @@ std::vector<uint8_t> clip_section(const RawScene& s) {
         names += c.name;
         names += '\0';
         for (const RawChannel& ch : c.channels) {
-            format::ChannelRecord r = {};
+            auto [it, added] = time_index.emplace(ch.times, uint32_t(time_arrays.size()));
+            if (added) {
+                time_arrays.push_back({uint32_t(times.size()), uint32_t(ch.times.size())});
+                times.insert(times.end(), ch.times.begin(), ch.times.end());
+            }
+            format::ChannelRecordV2 r = {};
             r.node = ch.node;
             r.path = uint8_t(ch.path);
             r.interp = uint8_t(ch.interp);
             r.key_count = uint32_t(ch.times.size());
-            r.times_offset = uint32_t(pool.size());
-            pool.insert(pool.end(), ch.times.begin(), ch.times.end());
-            r.values_offset = uint32_t(pool.size());
-            pool.insert(pool.end(), ch.values.begin(), ch.values.end());
+            r.time_array = it->second;
+            r.weight_begin = ch.weight_begin;
+            r.weight_count = ch.weight_count;
+            r.codes_offset = uint32_t(codes.size());
+            r.ranges_offset = uint32_t(ranges.size());
+            const uint32_t columns = channel_columns(ch);
+            for (uint32_t col = 0; col < columns; ++col) {
+                float lo = ch.values[col], hi = ch.values[col];
+                for (size_t k = 0; k < ch.times.size(); ++k) {
+                    lo = std::min(lo, ch.values[k * columns + col]);
+                    hi = std::max(hi, ch.values[k * columns + col]);
+                }
+                ranges.push_back(lo);
+                ranges.push_back(hi);
+            }
+            for (size_t k = 0; k < ch.times.size(); ++k)
+                for (uint32_t col = 0; col < columns; ++col) {
+                    float lo = ranges[r.ranges_offset + col * 2],
+                          hi = ranges[r.ranges_offset + col * 2 + 1];
+                    float x = ch.values[k * columns + col];
+                    codes.push_back(
+                        hi > lo ? uint16_t(std::lround(double(x - lo) / double(hi - lo) * 65535.0))
+                                : 0);
+                }
             channels.push_back(r);
         }
     }
     if (names.empty()) names.push_back('\0');
     Bytes b;
-    b.u32(uint32_t(clips.size()));
-    b.u32(uint32_t(channels.size()));
-    b.u32(uint32_t(pool.size()));
-    b.u32(uint32_t(names.size()));
+    for (size_t n : {clips.size(), channels.size(), time_arrays.size(), times.size(), ranges.size(),
+                     codes.size(), names.size()})
+        b.u32(uint32_t(n));
     b.put(clips);
     b.put(channels);
-    b.put(pool);
+    b.put(time_arrays);
+    b.put(times);
+    b.put(ranges);
+    b.put(codes);
     b.put(names.data(), names.size());
     return b.v;
 }
 
-std::vector<uint8_t> points_section(const PointHierarchy& p) {
+// MRPH section: default weight per slot, target records, delta pool (floats).
+std::vector<uint8_t> morph_section(const RawScene& s) {
+    std::vector<format::MorphTargetRecord> records;
+    std::vector<float> deltas;
+    for (const RawMorphTarget& t : s.morph_targets) {
+        format::MorphTargetRecord r = {t.weight, t.vertex_begin, t.vertex_count,
+                                       uint32_t(deltas.size()), format::kNoDeltas};
+        deltas.insert(deltas.end(), t.position_deltas.begin(), t.position_deltas.end());
+        if (!t.normal_deltas.empty()) {
+            r.normal_offset = uint32_t(deltas.size());
+            deltas.insert(deltas.end(), t.normal_deltas.begin(), t.normal_deltas.end());
+        }
+        records.push_back(r);
+    }
     Bytes b;
-    b.u32(uint32_t(p.size()));
-    b.put(p.host_triangle);
-    b.put(p.bary_u);
-    b.put(p.bary_v);
-    b.put(p.radius);
-    return b.v;
-}
-
-std::vector<uint8_t> neighbours_section(const PointHierarchy& p) {
-    Bytes b;
-    b.u32(uint32_t(p.size()));
-    b.u32(uint32_t(p.neighbours.size()));
-    b.put(p.neighbour_offsets);
-    b.put(p.neighbours);
+    b.u32(uint32_t(s.morph_weights.size()));
+    b.u32(uint32_t(records.size()));
+    b.u32(uint32_t(deltas.size()));
+    b.put(s.morph_weights);
+    b.put(records);
+    b.put(deltas);
     return b.v;
 }
 
@@ -132,8 +180,7 @@ std::vector<uint8_t> edges_section(const RawScene& s) {
 
 }  // namespace
 
-std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points,
-                                  const AssetOptions& options) {
+std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points) {
     struct Section {
         uint32_t tag;
         std::vector<uint8_t> bytes;
@@ -143,19 +190,18 @@ std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& p
     if (scene.animated()) {
         sections.push_back({format::kTagSkin, skin_section(scene)});
         if (!scene.clips.empty()) sections.push_back({format::kTagClips, clip_section(scene)});
+        if (!scene.morph_weights.empty())
+            sections.push_back({format::kTagMorph, morph_section(scene)});
     }
-    if (options.version == 0) {
-        sections.push_back({format::kTagPoints, points_section(points)});
-        sections.push_back({format::kTagNeighbours, neighbours_section(points)});
-    } else {
-        sections.push_back({format::kTagPointStream, point_stream_section(points, uint32_t(scene.triangle_count()))});
-    }
+    sections.push_back(
+        {format::kTagPointStream, point_stream_section(points, uint32_t(scene.triangle_count()))});
     sections.push_back({format::kTagEdges, edges_section(scene)});
 
     std::vector<format::SectionEntry> table(sections.size());
     uint64_t offset = sizeof(format::FileHeader) + table.size() * sizeof(format::SectionEntry);
     for (size_t i = 0; i < sections.size(); ++i) {
-        offset = (offset + format::kSectionAlign - 1) / format::kSectionAlign * format::kSectionAlign;
+        offset =
+            (offset + format::kSectionAlign - 1) / format::kSectionAlign * format::kSectionAlign;
         const std::vector<uint8_t>& bytes = sections[i].bytes;
         table[i] = {sections[i].tag, format::crc32(bytes.data(), bytes.size()), offset,
                     bytes.size()};
@@ -163,7 +209,7 @@ std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& p
     }
     format::FileHeader h = {};
     std::memcpy(h.magic, format::kMagic, 4);
-    h.version = options.version;
+    h.version = format::kVersion;
     h.endian_tag = format::kEndianTag;
     h.section_count = uint32_t(table.size());
     h.table_crc = format::crc32(table.data(), table.size() * sizeof(format::SectionEntry));
@@ -173,7 +219,8 @@ std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& p
     std::memcpy(out.data(), &h, sizeof(h));
     std::memcpy(out.data() + sizeof(h), table.data(), table.size() * sizeof(format::SectionEntry));
     for (size_t i = 0; i < sections.size(); ++i)
-        std::memcpy(out.data() + table[i].offset, sections[i].bytes.data(), sections[i].bytes.size());
+        std::memcpy(out.data() + table[i].offset, sections[i].bytes.data(),
+                    sections[i].bytes.size());
     return out;
 }
 

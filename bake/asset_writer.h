@@ -9,13 +9,8 @@
 
 namespace stipple::bake {
 
-struct AssetOptions {
-    uint16_t version = 1;  // 1: compact point stream (PNTQ); 0: uncompressed PNTS + NBRS
-};
-
 // Builds the whole file in memory (byte-identical for identical inputs).
-std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points,
-                                  const AssetOptions& options = {});
+std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points);
 
 // Writes to `path` through a temporary file and a rename, so a failed bake never leaves a
 // partial asset behind.

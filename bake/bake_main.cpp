@@ -144,8 +144,8 @@ int main(int argc, char** argv) {
     if (!write_asset(o.output, bytes, &error)) die(error);
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!o.quiet) {
-        // Point data only: the v1 point stream (or v0's PNTS + NBRS).
-        size_t point_bytes = check.section_size[3] + check.section_size[4] + check.section_size[6];
+        // Point data only: the coded point stream.
+        size_t point_bytes = check.section_size[stipple::kSectionPoints];
         std::printf(
             "{\"input\": \"%s\", \"output\": \"%s\", \"vertices\": %zu, \"triangles\": %zu, "
             "\"joints\": %zu, \"clips\": %zu, \"points\": %zu, \"input_points\": %u, "

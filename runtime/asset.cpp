@@ -2,8 +2,8 @@
 
 #include <cmath>
 #include <cstdarg>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <new>
 
@@ -62,8 +62,9 @@ LoadStatus parse_mesh(Reader r, MeshView* m) {
     m->normals = r.take<float>(size_t(m->vertex_count) * 3);
     m->indices = r.take<uint32_t>(size_t(m->triangle_count) * 3);
     if (!r.ok || r.at != r.size)
-        return fail(LoadError::malformed_section, "MESH: size does not match %u vertices, %u triangles",
-                    m->vertex_count, m->triangle_count);
+        return fail(LoadError::malformed_section,
+                    "MESH: size does not match %u vertices, %u triangles", m->vertex_count,
+                    m->triangle_count);
     if (m->vertex_count == 0 || m->triangle_count == 0)
         return fail(LoadError::malformed_section, "MESH: empty mesh");
     for (size_t i = 0; i < size_t(m->triangle_count) * 3; ++i)
@@ -111,103 +112,130 @@ LoadStatus parse_skin(Reader r, uint32_t vertex_count, SkinView* s) {
     return {};
 }
 
-LoadStatus parse_clips(Reader r, uint32_t node_count, Asset* a) {
-    uint32_t clip_count = r.u32(), channel_count = r.u32();
-    uint32_t float_count = r.u32(), name_bytes = r.u32();
+// Columns of one key's value: the value width, three times that for CUBICSPLINE.
+uint64_t columns_of(const format::ChannelRecordV2& c) {
+    uint64_t width = c.path == 1 ? 4 : c.path == 3 ? c.weight_count : 3;
+    return c.interp == 2 ? width * 3 : width;
+}
+
+// CLIP section: validates the records, then decodes every channel's 16-bit codes into one
+// float pool allocated here, at load, so sampling reads plain floats.
+LoadStatus parse_clips(Reader r, uint32_t node_count, uint32_t morph_slots, Asset* a) {
+    uint32_t n[7];
+    for (uint32_t& x : n) x = r.u32();
+    const uint32_t clip_count = n[0], channel_count = n[1], time_array_count = n[2];
+    const uint32_t time_count = n[3], range_count = n[4], code_count = n[5], name_bytes = n[6];
     const format::ClipRecord* clips = r.take<format::ClipRecord>(clip_count);
-    const format::ChannelRecord* channels = r.take<format::ChannelRecord>(channel_count);
-    const float* pool = r.take<float>(float_count);
+    const format::ChannelRecordV2* channels = r.take<format::ChannelRecordV2>(channel_count);
+    const format::TimeArrayRecord* arrays = r.take<format::TimeArrayRecord>(time_array_count);
+    const float* times = r.take<float>(time_count);
+    const float* ranges = r.take<float>(range_count);
+    const uint16_t* codes = r.take<uint16_t>(code_count);
     const char* names = r.take<char>(name_bytes);
     if (!r.ok || r.at != r.size)
         return fail(LoadError::malformed_section, "CLIP: size does not match %u clips, %u channels",
                     clip_count, channel_count);
     if (name_bytes == 0 || names[name_bytes - 1] != '\0')
         return fail(LoadError::malformed_section, "CLIP: name pool not NUL-terminated");
-    if (!all_finite(pool, float_count)) return fail(LoadError::bad_value, "CLIP: non-finite key");
-
+    if (!all_finite(times, time_count) || !all_finite(ranges, range_count))
+        return fail(LoadError::bad_value, "CLIP: non-finite key time or range");
+    for (uint32_t i = 0; i < time_array_count; ++i)
+        if (arrays[i].offset > time_count || arrays[i].count > time_count - arrays[i].offset)
+            return fail(LoadError::out_of_range, "CLIP: time array %u outside the time pool", i);
+    uint64_t value_total = 0;
+    for (uint32_t i = 0; i < channel_count; ++i) {
+        const format::ChannelRecordV2& c = channels[i];
+        const uint64_t columns = columns_of(c), values = columns * c.key_count;
+        if (c.path > 3 || c.interp > 2 || c.time_array >= time_array_count || columns == 0 ||
+            arrays[c.time_array].count != c.key_count || c.codes_offset > code_count ||
+            values > code_count - c.codes_offset || c.ranges_offset > range_count ||
+            columns * 2 > range_count - c.ranges_offset)
+            return fail(LoadError::out_of_range,
+                        "CLIP: channel %u (path %u, interp %u, %u keys) outside its pools", i,
+                        c.path, c.interp, c.key_count);
+        value_total += values;
+    }
+    a->clip_values.reset(new (std::nothrow) float[size_t(value_total) + 1]);
     a->channel_storage.reset(new (std::nothrow) anim::Channel[channel_count + 1]);
     a->clip_storage.reset(new (std::nothrow) anim::Clip[clip_count + 1]);
-    if (!a->channel_storage || !a->clip_storage)
+    if (!a->clip_values || !a->channel_storage || !a->clip_storage)
         return fail(LoadError::malformed_section, "CLIP: out of memory");
+    float* out = a->clip_values.get();
     for (uint32_t i = 0; i < channel_count; ++i) {
-        const format::ChannelRecord& c = channels[i];
-        size_t width = c.path == 1 ? 4 : 3;
-        if (c.node >= node_count || c.path > 2 || c.interp > 1 || c.key_count == 0)
-            return fail(LoadError::out_of_range, "CLIP: channel %u has node %u path %u interp %u keys %u",
-                        i, c.node, c.path, c.interp, c.key_count);
-        if (c.times_offset > float_count || c.key_count > float_count - c.times_offset ||
-            c.values_offset > float_count || c.key_count * width > float_count - c.values_offset)
-            return fail(LoadError::out_of_range, "CLIP: channel %u keys outside the float pool", i);
-        const float* t = pool + c.times_offset;
-        for (uint32_t k = 1; k < c.key_count; ++k)
-            if (!(t[k] > t[k - 1]))
-                return fail(LoadError::bad_value, "CLIP: channel %u key times not increasing", i);
-        a->channel_storage[i] = {c.node, anim::Path(c.path), anim::Interp(c.interp), c.key_count, t,
-                                 pool + c.values_offset};
+        const format::ChannelRecordV2& c = channels[i];
+        const uint64_t columns = columns_of(c);
+        const float* range = ranges + c.ranges_offset;
+        const uint16_t* code = codes + c.codes_offset;
+        for (uint64_t k = 0; k < c.key_count; ++k)
+            for (uint64_t col = 0; col < columns; ++col) {
+                const float lo = range[col * 2], hi = range[col * 2 + 1];
+                out[k * columns + col] =
+                    lo + (hi - lo) * (float(code[k * columns + col]) / 65535.0f);
+            }
+        a->channel_storage[i] = {c.node,
+                                 anim::Path(c.path),
+                                 anim::Interp(c.interp),
+                                 c.key_count,
+                                 times + arrays[c.time_array].offset,
+                                 out,
+                                 c.weight_begin,
+                                 c.weight_count};
+        out += columns * c.key_count;
     }
     for (uint32_t i = 0; i < clip_count; ++i) {
         const format::ClipRecord& c = clips[i];
         if (c.name_offset >= name_bytes || c.channel_begin > channel_count ||
             c.channel_count > channel_count - c.channel_begin)
             return fail(LoadError::out_of_range, "CLIP: clip %u name or channels out of range", i);
-        if (!std::isfinite(c.duration) || c.duration < 0)
-            return fail(LoadError::bad_value, "CLIP: clip %u duration %g", i, double(c.duration));
         a->clip_storage[i] = {names + c.name_offset, c.duration, c.channel_count,
                               a->channel_storage.get() + c.channel_begin};
+        uint32_t bad = 0;
+        anim::DataError e = anim::check_clip(a->clip_storage[i], node_count, morph_slots, &bad);
+        if (e != anim::DataError::ok)
+            return fail(
+                e == anim::DataError::non_finite_value || e == anim::DataError::times_not_increasing
+                    ? LoadError::bad_value
+                    : LoadError::out_of_range,
+                "CLIP: clip %u '%s' channel %u: %s", i, a->clip_storage[i].name, bad,
+                anim::data_error_name(e));
     }
     a->clip_count = clip_count;
     a->clips = a->clip_storage.get();
     return {};
 }
 
-LoadStatus parse_points(Reader r, uint32_t triangle_count, PointsView* p) {
-    p->point_count = r.u32();
-    p->host_triangle = r.take<uint32_t>(p->point_count);
-    p->bary_u = r.take<float>(p->point_count);
-    p->bary_v = r.take<float>(p->point_count);
-    p->radius = r.take<float>(p->point_count);
+// MRPH section: default weight per slot, target records and their delta pool.
+LoadStatus parse_morph(Reader r, uint32_t vertex_count, Asset* a) {
+    const uint32_t slots = r.u32(), target_count = r.u32(), delta_count = r.u32();
+    const float* defaults = r.take<float>(slots);
+    const format::MorphTargetRecord* records = r.take<format::MorphTargetRecord>(target_count);
+    const float* deltas = r.take<float>(delta_count);
     if (!r.ok || r.at != r.size)
-        return fail(LoadError::malformed_section, "PNTS: size does not match %u points",
-                    p->point_count);
-    const float eps = 1e-5f;
-    for (uint32_t i = 0; i < p->point_count; ++i) {
-        if (p->host_triangle[i] >= triangle_count)
-            return fail(LoadError::out_of_range, "PNTS: point %u host triangle %u >= %u", i,
-                        p->host_triangle[i], triangle_count);
-        float u = p->bary_u[i], v = p->bary_v[i];
-        if (!(u >= -eps && v >= -eps && u + v <= 1 + eps))
-            return fail(LoadError::bad_value, "PNTS: point %u barycentrics (%g, %g) invalid", i,
-                        double(u), double(v));
-        if (!(p->radius[i] >= 0 && std::isfinite(p->radius[i])))
-            return fail(LoadError::bad_value, "PNTS: point %u radius %g", i, double(p->radius[i]));
+        return fail(LoadError::malformed_section, "MRPH: size does not match %u targets",
+                    target_count);
+    if (!all_finite(deltas, delta_count))
+        return fail(LoadError::bad_value, "MRPH: non-finite delta");
+    a->morph_target_storage.reset(new (std::nothrow) anim::MorphTarget[target_count + 1]);
+    if (!a->morph_target_storage) return fail(LoadError::malformed_section, "MRPH: out of memory");
+    for (uint32_t i = 0; i < target_count; ++i) {
+        const format::MorphTargetRecord& t = records[i];
+        const uint64_t need = uint64_t(t.vertex_count) * 3;
+        if (t.position_offset > delta_count || need > delta_count - t.position_offset ||
+            (t.normal_offset != format::kNoDeltas &&
+             (t.normal_offset > delta_count || need > delta_count - t.normal_offset)))
+            return fail(LoadError::out_of_range, "MRPH: target %u deltas outside the pool", i);
+        a->morph_target_storage[i] = {
+            t.weight, t.vertex_begin, t.vertex_count, deltas + t.position_offset,
+            t.normal_offset == format::kNoDeltas ? nullptr : deltas + t.normal_offset};
     }
+    a->morph = {slots, defaults, target_count, a->morph_target_storage.get()};
+    anim::DataError e = anim::check_morph(a->morph, vertex_count);
+    if (e != anim::DataError::ok)
+        return fail(LoadError::out_of_range, "MRPH: %s", anim::data_error_name(e));
     return {};
 }
 
-LoadStatus parse_neighbours(Reader r, PointsView* p) {
-    uint32_t point_count = r.u32();
-    p->neighbour_count = r.u32();
-    p->neighbour_offsets = r.take<uint32_t>(size_t(point_count) + 1);
-    p->neighbours = r.take<uint32_t>(p->neighbour_count);
-    if (!r.ok || r.at != r.size)
-        return fail(LoadError::malformed_section, "NBRS: size does not match %u neighbours",
-                    p->neighbour_count);
-    if (point_count != p->point_count)
-        return fail(LoadError::malformed_section, "NBRS: %u points but PNTS has %u", point_count,
-                    p->point_count);
-    if (p->neighbour_offsets[0] != 0 || p->neighbour_offsets[point_count] != p->neighbour_count)
-        return fail(LoadError::malformed_section, "NBRS: offsets do not span the neighbour list");
-    for (uint32_t i = 0; i < point_count; ++i)
-        if (p->neighbour_offsets[i + 1] < p->neighbour_offsets[i])
-            return fail(LoadError::malformed_section, "NBRS: offsets decrease at point %u", i);
-    for (uint32_t i = 0; i < p->neighbour_count; ++i)
-        if (p->neighbours[i] >= point_count)
-            return fail(LoadError::out_of_range, "NBRS: neighbour %u >= point count %u",
-                        p->neighbours[i], point_count);
-    return {};
-}
-
-// One pass over the v1 point stream (thesis §4.5 fields, coded as in point_codec.h). With
+// One pass over the point stream (thesis §4.5 fields, coded as in point_codec.h). With
 // out == nullptr it only counts neighbours so the caller can size the arrays.
 bool decode_point_stream(codec::BitReader r, uint32_t point_count, float radius_max,
                          uint32_t triangle_count, PointsView* out, uint32_t* neighbour_total,
@@ -220,8 +248,9 @@ bool decode_point_stream(codec::BitReader r, uint32_t point_count, float radius_
         uint32_t q = r.bits(codec::kRadiusBits), n = r.bits(codec::kCountBits);
         if (!r.ok) break;
         if (host >= triangle_count || u + v > (1u << codec::kBaryBits) - 1) {
-            std::snprintf(why, why_size, "point %u host triangle %u (of %u) or barycentrics invalid",
-                          i, host, triangle_count);
+            std::snprintf(why, why_size,
+                          "point %u host triangle %u (of %u) or barycentrics invalid", i, host,
+                          triangle_count);
             return false;
         }
         const int k = codec::neighbour_order(i);
@@ -302,8 +331,9 @@ LoadStatus parse_edges(Reader r, const MeshView& m, EdgesView* e) {
         const uint32_t* x = e->edges + size_t(i) * 4;
         if (x[0] >= m.vertex_count || x[1] >= m.vertex_count || x[2] >= m.triangle_count ||
             (x[3] >= m.triangle_count && x[3] != format::kNoFace))
-            return fail(LoadError::out_of_range, "EDGE: edge %u (%u, %u, faces %u, %u) out of range",
-                        i, x[0], x[1], x[2], x[3]);
+            return fail(LoadError::out_of_range,
+                        "EDGE: edge %u (%u, %u, faces %u, %u) out of range", i, x[0], x[1], x[2],
+                        x[3]);
     }
     return {};
 }
@@ -322,10 +352,9 @@ LoadStatus parse(const uint8_t* bytes, size_t size, Asset* a) {
     std::memcpy(&h, bytes, sizeof(h));
     if (h.endian_tag != format::kEndianTag)
         return fail(LoadError::wrong_endianness, "asset byte order does not match this machine");
-    if (h.version < format::kOldestVersion || h.version > format::kVersion)
+    if (h.version != format::kVersion)
         return fail(LoadError::unsupported_version,
-                    "asset format version %u, this runtime reads %u to %u", h.version,
-                    format::kOldestVersion, format::kVersion);
+                    "asset format version %u, this runtime reads %u", h.version, format::kVersion);
     a->version = h.version;
     if (h.file_size != size)
         return fail(LoadError::truncated, "asset is %zu bytes but its header says %llu", size,
@@ -345,21 +374,23 @@ LoadStatus parse(const uint8_t* bytes, size_t size, Asset* a) {
                         tag, static_cast<unsigned long long>(s.offset),
                         static_cast<unsigned long long>(s.size), size);
         if (format::crc32(bytes + s.offset, s.size) != s.crc)
-            return fail(LoadError::checksum_mismatch, "%s: checksum mismatch (corrupted asset)", tag);
+            return fail(LoadError::checksum_mismatch, "%s: checksum mismatch (corrupted asset)",
+                        tag);
     }
-    const uint32_t tags[7] = {format::kTagMesh,       format::kTagSkin,  format::kTagClips,
-                              format::kTagPoints,     format::kTagNeighbours,
-                              format::kTagEdges,      format::kTagPointStream};
-    const format::SectionEntry* sec[7];
-    for (int i = 0; i < 7; ++i) {
+    const uint32_t tags[kSectionCount] = {format::kTagMesh,  format::kTagSkin,
+                                          format::kTagClips, format::kTagPointStream,
+                                          format::kTagEdges, format::kTagMorph};
+    const format::SectionEntry* sec[kSectionCount];
+    for (int i = 0; i < kSectionCount; ++i) {
         sec[i] = find_section(table, h.section_count, tags[i]);
         a->section_size[i] = sec[i] ? sec[i]->size : 0;
     }
-    const bool coded = h.version >= 1;
-    if (!sec[0] || (coded && !sec[6]) || (!coded && (!sec[3] || !sec[4])))
+    if (!sec[0] || !sec[3])
         return fail(LoadError::missing_section, "asset lacks a %s section",
-                    !sec[0] ? "MESH" : coded ? "PNTQ" : !sec[3] ? "PNTS" : "NBRS");
-    if (sec[2] && !sec[1]) return fail(LoadError::missing_section, "CLIP section without SKIN");
+                    !sec[0] ? "MESH" : "PNTQ");
+    if ((sec[2] || sec[5]) && !sec[1])
+        return fail(LoadError::missing_section, "%s section without SKIN",
+                    sec[2] ? "CLIP" : "MRPH");
     auto reader = [&](const format::SectionEntry* s) {
         return Reader{bytes + s->offset, size_t(s->size)};
     };
@@ -368,11 +399,11 @@ LoadStatus parse(const uint8_t* bytes, size_t size, Asset* a) {
         a->skinned = true;
         st = parse_skin(reader(sec[1]), a->mesh.vertex_count, &a->skin);
     }
-    if (st.ok() && sec[2]) st = parse_clips(reader(sec[2]), a->skin.skeleton.node_count, a);
-    if (st.ok() && coded) st = parse_point_stream(reader(sec[6]), a->mesh.triangle_count, a);
-    if (st.ok() && !coded) st = parse_points(reader(sec[3]), a->mesh.triangle_count, &a->points);
-    if (st.ok() && !coded) st = parse_neighbours(reader(sec[4]), &a->points);
-    if (st.ok() && sec[5]) st = parse_edges(reader(sec[5]), a->mesh, &a->edges);
+    if (st.ok() && sec[5]) st = parse_morph(reader(sec[5]), a->mesh.vertex_count, a);
+    if (st.ok() && sec[2])
+        st = parse_clips(reader(sec[2]), a->skin.skeleton.node_count, a->morph.weight_count, a);
+    if (st.ok()) st = parse_point_stream(reader(sec[3]), a->mesh.triangle_count, a);
+    if (st.ok() && sec[4]) st = parse_edges(reader(sec[4]), a->mesh, &a->edges);
     return st;
 }
 
@@ -428,17 +459,28 @@ int find_clip(const Asset& asset, const char* name) {
 
 const char* load_error_name(LoadError error) {
     switch (error) {
-        case LoadError::ok: return "ok";
-        case LoadError::io_error: return "io_error";
-        case LoadError::bad_magic: return "bad_magic";
-        case LoadError::unsupported_version: return "unsupported_version";
-        case LoadError::wrong_endianness: return "wrong_endianness";
-        case LoadError::truncated: return "truncated";
-        case LoadError::checksum_mismatch: return "checksum_mismatch";
-        case LoadError::missing_section: return "missing_section";
-        case LoadError::malformed_section: return "malformed_section";
-        case LoadError::out_of_range: return "out_of_range";
-        case LoadError::bad_value: return "bad_value";
+        case LoadError::ok:
+            return "ok";
+        case LoadError::io_error:
+            return "io_error";
+        case LoadError::bad_magic:
+            return "bad_magic";
+        case LoadError::unsupported_version:
+            return "unsupported_version";
+        case LoadError::wrong_endianness:
+            return "wrong_endianness";
+        case LoadError::truncated:
+            return "truncated";
+        case LoadError::checksum_mismatch:
+            return "checksum_mismatch";
+        case LoadError::missing_section:
+            return "missing_section";
+        case LoadError::malformed_section:
+            return "malformed_section";
+        case LoadError::out_of_range:
+            return "out_of_range";
+        case LoadError::bad_value:
+            return "bad_value";
     }
     return "unknown";
 }

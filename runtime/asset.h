@@ -17,12 +17,12 @@ enum class LoadError {
     bad_magic,            // not a .stip file
     unsupported_version,  // written by a newer or older format
     wrong_endianness,
-    truncated,            // file shorter than its header or a section says
-    checksum_mismatch,    // a section's bytes do not match its CRC
+    truncated,          // file shorter than its header or a section says
+    checksum_mismatch,  // a section's bytes do not match its CRC
     missing_section,
-    malformed_section,    // sizes inside a section disagree
-    out_of_range,         // an index points outside its array
-    bad_value,            // NaN, infinity, or a value outside its domain
+    malformed_section,  // sizes inside a section disagree
+    out_of_range,       // an index points outside its array
+    bad_value,          // NaN, infinity, or a value outside its domain
 };
 
 struct LoadStatus {
@@ -35,18 +35,18 @@ struct LoadStatus {
 struct MeshView {
     uint32_t vertex_count = 0;
     uint32_t triangle_count = 0;
-    const float* positions = nullptr;  // 3 per vertex
-    const float* normals = nullptr;    // 3 per vertex
-    const uint32_t* indices = nullptr; // 3 per triangle, each < vertex_count
+    const float* positions = nullptr;   // 3 per vertex
+    const float* normals = nullptr;     // 3 per vertex
+    const uint32_t* indices = nullptr;  // 3 per triangle, each < vertex_count
 };
 
 // Point hierarchy (thesis §4.5), structure of arrays, ordered coarse to fine.
 struct PointsView {
     uint32_t point_count = 0;
-    const uint32_t* host_triangle = nullptr;  // < triangle_count
-    const float* bary_u = nullptr;            // weight of the host triangle's first vertex
-    const float* bary_v = nullptr;            // weight of its second; third is 1 - u - v
-    const float* radius = nullptr;            // relevance radius at bake time (object space)
+    const uint32_t* host_triangle = nullptr;      // < triangle_count
+    const float* bary_u = nullptr;                // weight of the host triangle's first vertex
+    const float* bary_v = nullptr;                // weight of its second; third is 1 - u - v
+    const float* radius = nullptr;                // relevance radius at bake time (object space)
     const uint32_t* neighbour_offsets = nullptr;  // point_count + 1, non-decreasing
     const uint32_t* neighbours = nullptr;         // relevant neighbours, each < point_count
     uint32_t neighbour_count = 0;
@@ -65,6 +65,17 @@ struct SkinView {
     const float* weights = nullptr;    // 4 per vertex
 };
 
+// Indices of Asset::section_size.
+enum : int {
+    kSectionMesh = 0,
+    kSectionSkin,
+    kSectionClips,
+    kSectionPoints,
+    kSectionEdges,
+    kSectionMorph,
+    kSectionCount
+};
+
 struct Asset {
     MeshView mesh;
     PointsView points;
@@ -74,14 +85,18 @@ struct Asset {
     uint32_t clip_count = 0;
     const anim::Clip* clips = nullptr;
     size_t file_size = 0;
+    bool has_morph() const { return morph.target_count > 0; }
+    anim::Morph morph = {};  // morph targets (empty if the asset has no MRPH section)
     uint16_t version = 0;
-    size_t section_size[7] = {};  // MESH, SKIN, CLIP, PNTS, NBRS, EDGE, PNTQ bytes (0: absent)
+    size_t section_size[kSectionCount] = {};  // bytes per section, kSection* order (0: absent)
 
     // Owned storage: the file bytes and the clip/channel tables built from them.
     std::unique_ptr<uint8_t[]> storage;
     std::unique_ptr<anim::Channel[]> channel_storage;
     std::unique_ptr<anim::Clip[]> clip_storage;
-    std::unique_ptr<uint32_t[]> point_storage;  // decoded v1 point stream
+    std::unique_ptr<uint32_t[]> point_storage;  // decoded point stream
+    std::unique_ptr<float[]> clip_values;       // decoded clip key values
+    std::unique_ptr<anim::MorphTarget[]> morph_target_storage;
 };
 
 // Reads and validates a whole asset. On failure `out` is left empty.

@@ -8,8 +8,7 @@
 namespace stipple::format {
 
 constexpr char kMagic[4] = {'S', 'T', 'I', 'P'};
-constexpr uint16_t kVersion = 1;        // written by the bake
-constexpr uint16_t kOldestVersion = 0;  // still read: v0 stores points uncompressed
+constexpr uint16_t kVersion = 2;
 constexpr uint16_t kEndianTag = 0xFEFF;  // reads as 0xFFFE on a big-endian machine
 constexpr uint32_t kSectionAlign = 16;
 
@@ -20,47 +19,69 @@ constexpr uint32_t fourcc(char a, char b, char c, char d) {
 constexpr uint32_t kTagMesh = fourcc('M', 'E', 'S', 'H');
 constexpr uint32_t kTagSkin = fourcc('S', 'K', 'I', 'N');
 constexpr uint32_t kTagClips = fourcc('C', 'L', 'I', 'P');
-constexpr uint32_t kTagPoints = fourcc('P', 'N', 'T', 'S');
-constexpr uint32_t kTagNeighbours = fourcc('N', 'B', 'R', 'S');
 constexpr uint32_t kTagEdges = fourcc('E', 'D', 'G', 'E');
-constexpr uint32_t kTagPointStream = fourcc('P', 'N', 'T', 'Q');  // v1: PNTS + NBRS, coded
-constexpr uint32_t kNoFace = 0xFFFFFFFFu;  // second face of a boundary edge
+constexpr uint32_t kTagPointStream = fourcc('P', 'N', 'T', 'Q');  // the point hierarchy, coded
+constexpr uint32_t kTagMorph = fourcc('M', 'R', 'P', 'H');        // morph targets
+constexpr uint32_t kNoFace = 0xFFFFFFFFu;                         // second face of a boundary edge
 
-struct FileHeader {         // 32 bytes at offset 0
+struct FileHeader {  // 32 bytes at offset 0
     char magic[4];
     uint16_t version;
     uint16_t endian_tag;
     uint32_t section_count;
-    uint32_t table_crc;     // CRC-32 of the section table
+    uint32_t table_crc;  // CRC-32 of the section table
     uint64_t file_size;
     uint64_t reserved;
 };
 static_assert(sizeof(FileHeader) == 32, "header layout");
 
-struct SectionEntry {       // section_count entries right after the header
+struct SectionEntry {  // section_count entries right after the header
     uint32_t tag;
-    uint32_t crc;           // CRC-32 of the section's bytes
-    uint64_t offset;        // from the start of the file, kSectionAlign-aligned
+    uint32_t crc;     // CRC-32 of the section's bytes
+    uint64_t offset;  // from the start of the file, kSectionAlign-aligned
     uint64_t size;
 };
 static_assert(sizeof(SectionEntry) == 24, "section entry layout");
 
-struct ClipRecord {         // one per clip in the CLIP section
-    uint32_t name_offset;   // into the name pool, NUL-terminated
+struct ClipRecord {        // one per clip in the CLIP section
+    uint32_t name_offset;  // into the name pool, NUL-terminated
     uint32_t channel_begin;
     uint32_t channel_count;
     float duration;
 };
-struct ChannelRecord {      // one per channel in the CLIP section
+static_assert(sizeof(ClipRecord) == 16, "clip layout");
+
+// CLIP section: key times are stored once per distinct time array and indexed;
+// values are 16-bit codes over a per-column [min, max] range (a column is one float of a
+// key's value: width floats, or 3 * width for CUBICSPLINE's in-tangent/value/out-tangent).
+struct ChannelRecordV2 {
     uint32_t node;
-    uint8_t path;           // 0 translation, 1 rotation, 2 scale
-    uint8_t interp;         // 0 step, 1 linear
+    uint8_t path;    // 0 translation, 1 rotation, 2 scale, 3 weights
+    uint8_t interp;  // 0 step, 1 linear, 2 cubic spline
     uint16_t reserved;
     uint32_t key_count;
-    uint32_t times_offset;  // into the float pool
-    uint32_t values_offset; // into the float pool
+    uint32_t time_array;     // index into the time array table
+    uint32_t weight_begin;   // weights path: first morph slot
+    uint32_t weight_count;   // weights path: slots animated (the value width)
+    uint32_t codes_offset;   // into the u16 code pool: key_count * columns codes, key-major
+    uint32_t ranges_offset;  // into the float range pool: 2 floats (min, max) per column
 };
-static_assert(sizeof(ClipRecord) == 16 && sizeof(ChannelRecord) == 20, "clip layout");
+struct TimeArrayRecord {
+    uint32_t offset;  // into the float time pool
+    uint32_t count;
+};
+static_assert(sizeof(ChannelRecordV2) == 32 && sizeof(TimeArrayRecord) == 8, "clip v2 layout");
+
+// MRPH section: one record per morph target.
+struct MorphTargetRecord {
+    uint32_t weight;  // slot
+    uint32_t vertex_begin;
+    uint32_t vertex_count;
+    uint32_t position_offset;  // into the delta float pool (3 * vertex_count floats)
+    uint32_t normal_offset;    // likewise, or 0xFFFFFFFF for no normal deltas
+};
+static_assert(sizeof(MorphTargetRecord) == 20, "morph layout");
+constexpr uint32_t kNoDeltas = 0xFFFFFFFFu;
 
 // CRC-32 (ISO-HDLC / zlib polynomial), used for section checksums.
 uint32_t crc32(const void* data, size_t size, uint32_t crc = 0);

@@ -20,6 +20,8 @@ using namespace stipple;
 
 // A skinned quad with one clip and a three-point hierarchy.
 void make_scene(bake::RawScene* s, bake::PointHierarchy* p) {
+    *s = bake::RawScene();
+    *p = bake::PointHierarchy();
     s->positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
     s->normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
     s->indices = {0, 1, 2, 0, 2, 3};
@@ -52,13 +54,11 @@ void make_scene(bake::RawScene* s, bake::PointHierarchy* p) {
     p->neighbours = {1, 2, 0, 0, 1};
 }
 
-std::vector<uint8_t> encoded(uint16_t version = 1) {
+std::vector<uint8_t> encoded() {
     bake::RawScene s;
     bake::PointHierarchy p;
     make_scene(&s, &p);
-    bake::AssetOptions options;
-    options.version = version;
-    return bake::encode_asset(s, p, options);
+    return bake::encode_asset(s, p);
 }
 
 // Recomputes every checksum, so a test can change a value and reach the semantic checks.
@@ -85,9 +85,7 @@ TEST(AssetFormat, RoundTripKeepsEveryField) {
     bake::RawScene s;
     bake::PointHierarchy p;
     make_scene(&s, &p);
-    bake::AssetOptions v0;
-    v0.version = 0;
-    std::vector<uint8_t> bytes = bake::encode_asset(s, p, v0);
+    std::vector<uint8_t> bytes = bake::encode_asset(s, p);
     Asset a;
     LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
     ASSERT_TRUE(st.ok()) << st.message;
@@ -107,21 +105,24 @@ TEST(AssetFormat, RoundTripKeepsEveryField) {
     EXPECT_STREQ(a.clips[0].name, "wave");
     ASSERT_EQ(a.clips[0].channel_count, 1u);
     EXPECT_EQ(a.clips[0].channels[0].key_count, 2u);
-    EXPECT_FLOAT_EQ(a.clips[0].channels[0].values[7], 0.7071068f);
+    EXPECT_FLOAT_EQ(a.clips[0].channels[0].times[1], 1.0f);  // key times are exact
+    // Values are 16-bit codes over each column's range: error <= range / 131070.
+    EXPECT_NEAR(a.clips[0].channels[0].values[7], 0.7071068f, 0.3f / 131070);
+    EXPECT_NEAR(a.clips[0].channels[0].values[3], 1.0f, 0.3f / 131070);
     EXPECT_EQ(find_clip(a, "wave"), 0);
     EXPECT_EQ(find_clip(a, "0"), 0);
     EXPECT_EQ(find_clip(a, "1"), -1);
     ASSERT_EQ(a.points.point_count, 3u);
     EXPECT_EQ(a.points.host_triangle[2], 1u);
     EXPECT_FLOAT_EQ(a.points.bary_v[2], 1.0f);
-    EXPECT_FLOAT_EQ(a.points.radius[0], 0.8f);
+    EXPECT_NEAR(a.points.radius[0], 0.8f, 0.8f * 0.0014f);
     EXPECT_EQ(a.points.neighbour_offsets[3], 5u);
-    EXPECT_EQ(a.points.neighbours[4], 1u);
+    EXPECT_EQ(a.edges.edge_count, 5u);  // a quad: 4 boundary edges and its diagonal
     // Re-encoding is byte-identical (deterministic writer).
-    EXPECT_EQ(bytes, bake::encode_asset(s, p, v0));
+    EXPECT_EQ(bytes, bake::encode_asset(s, p));
 }
 
-// Version 1 codes the point hierarchy: the quantisation stays within the bounds that
+// The point hierarchy is coded: the quantisation stays within the bounds that
 // runtime/point_codec.h and docs/format.md state, and neighbour lists survive exactly.
 TEST(AssetFormat, CompactPointsRoundTripWithinStatedError) {
     bake::RawScene s;
@@ -152,7 +153,7 @@ TEST(AssetFormat, CompactPointsRoundTripWithinStatedError) {
     Asset a;
     LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
     ASSERT_TRUE(st.ok()) << st.message;
-    EXPECT_EQ(a.version, 1);
+    EXPECT_EQ(a.version, 2);
     ASSERT_EQ(a.points.point_count, n);
     const float bary_error = 0.5f / 4095.0f + 1e-6f;
     for (uint32_t i = 0; i < n; ++i) {
@@ -170,8 +171,46 @@ TEST(AssetFormat, CompactPointsRoundTripWithinStatedError) {
         std::sort(got.begin(), got.end());
         ASSERT_EQ(got, want) << i;
     }
-    size_t point_bytes = a.section_size[6];
-    std::printf("v1 point stream: %.2f bytes per point\n", double(point_bytes) / n);
+    size_t point_bytes = a.section_size[kSectionPoints];
+    std::printf("point stream: %.2f bytes per point\n", double(point_bytes) / n);
+}
+
+TEST(AssetFormat, MorphTargetsRoundTrip) {
+    bake::RawScene s;
+    bake::PointHierarchy p;
+    make_scene(&s, &p);
+    s.morph_weights = {0.25f, 0.0f};
+    s.morph_weight_nodes = {1, 1};
+    bake::RawMorphTarget t;
+    t.weight = 1;
+    t.vertex_begin = 2;
+    t.vertex_count = 2;
+    t.position_deltas = {0, 0, 1, 0, 0, 2};
+    s.morph_targets.push_back(t);
+    bake::RawChannel w;
+    w.node = 1;
+    w.path = bake::RawPath::weights;
+    w.interp = bake::RawInterp::cubic_spline;
+    w.weight_begin = 0;
+    w.weight_count = 2;
+    w.times = {0.0f, 0.5f};
+    w.values.assign(2 * 3 * 2, 0.0f);  // (in, value, out) x 2 slots x 2 keys
+    w.values[2 * 1 + 1] = 0.75f;       // key 0 value of slot 1
+    s.clips[0].channels.push_back(w);
+    std::vector<uint8_t> bytes = bake::encode_asset(s, p);
+    Asset a;
+    LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
+    ASSERT_TRUE(st.ok()) << st.message;
+    ASSERT_TRUE(a.has_morph());
+    EXPECT_EQ(a.morph.weight_count, 2u);
+    EXPECT_FLOAT_EQ(a.morph.default_weights[0], 0.25f);
+    EXPECT_EQ(a.morph.targets[0].vertex_begin, 2u);
+    EXPECT_FLOAT_EQ(a.morph.targets[0].position_deltas[5], 2.0f);
+    EXPECT_EQ(a.morph.targets[0].normal_deltas, nullptr);
+    const anim::Channel& c = a.clips[0].channels[1];
+    EXPECT_EQ(c.path, anim::Path::weights);
+    EXPECT_EQ(c.interp, anim::Interp::cubic_spline);
+    EXPECT_NEAR(c.values[3], 0.75f, 1e-5);
 }
 
 TEST(AssetFormat, TruncatedAssetIsRejectedAtEveryLength) {
@@ -212,23 +251,31 @@ TEST(AssetFormat, BadMagicAndVersionAreNamed) {
 }
 
 TEST(AssetFormat, OutOfRangeIndicesAreRejectedEvenWithValidChecksums) {
-    std::vector<uint8_t> bytes = encoded(0);
-    // PNTS: u32 count, then host_triangle[3]; point 1's host becomes triangle 7 of 2.
-    uint32_t bad = 7;
-    std::memcpy(&bytes[section_offset(bytes, format::kTagPoints) + 8], &bad, 4);
-    fix_checksums(&bytes);
+    // The writer does not check; the loader must: point 1's host triangle 7 of 2, then a
+    // neighbour 99 of 3 points, then a clip channel on node 5 of 2.
+    bake::RawScene s;
+    bake::PointHierarchy p;
+    make_scene(&s, &p);
+    p.host_triangle[1] = 7;
+    std::vector<uint8_t> bytes = bake::encode_asset(s, p);
     Asset a;
     LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
     EXPECT_EQ(st.error, LoadError::out_of_range);
     EXPECT_NE(std::strstr(st.message, "host triangle 7"), nullptr) << st.message;
 
-    bytes = encoded(0);
-    // NBRS: u32 points, u32 count, offsets[4], then neighbours: the first becomes 99.
-    bad = 99;
-    std::memcpy(&bytes[section_offset(bytes, format::kTagNeighbours) + 8 + 16], &bad, 4);
-    fix_checksums(&bytes);
+    make_scene(&s, &p);
+    p.neighbours[0] = 99;
+    bytes = bake::encode_asset(s, p);
     st = load_asset_memory(bytes.data(), bytes.size(), &a);
     EXPECT_EQ(st.error, LoadError::out_of_range);
+    EXPECT_NE(std::strstr(st.message, "neighbour 99"), nullptr) << st.message;
+
+    make_scene(&s, &p);
+    s.clips[0].channels[0].node = 5;
+    bytes = bake::encode_asset(s, p);
+    st = load_asset_memory(bytes.data(), bytes.size(), &a);
+    EXPECT_EQ(st.error, LoadError::out_of_range);
+    EXPECT_NE(std::strstr(st.message, "'wave' channel 0"), nullptr) << st.message;
 
     bytes = encoded();
     // MESH: u32 V, u32 T, positions: the first becomes NaN.
@@ -243,8 +290,8 @@ TEST(AssetFormat, OutOfRangeIndicesAreRejectedEvenWithValidChecksums) {
 // either accept the asset or reject it with a message, never crash (run under ASan to see
 // any overrun).
 TEST(AssetFormat, RandomCorruptionNeverCrashes) {
-    for (uint16_t version : {0, 1}) {
-        const std::vector<uint8_t> bytes = encoded(version);
+    {
+        const std::vector<uint8_t> bytes = encoded();
         const size_t payload = section_offset(bytes, format::kTagMesh);
         std::mt19937 rng(1234);
         int rejected = 0;
