@@ -5,9 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <new>
-
 #include <glm/gtc/matrix_transform.hpp>
+#include <new>
 
 #include "runtime/point_placement.h"
 #include "runtime/silhouette.h"
@@ -31,8 +30,34 @@ bool alloc(std::unique_ptr<T[]>* out, size_t count) {
     return bool(*out);
 }
 
-// Skins (or copies) the mesh into p->vertex_positions/normals for the given pose.
-void pose_mesh(Pipeline* p, int clip, float time, StageTimes* t, Clock::time_point* clock) {
+// Samples clip `clip` at `time` into pose slot `slot` (locals and morph weights), with that
+// slot's sampling context so forward playback only touches the keys it needs.
+void sample_pose(Pipeline* p, int slot, int clip, float time) {
+    const Asset& a = *p->asset;
+    const anim::Skeleton& k = a.skin.skeleton;
+    const uint32_t slots = a.morph.weight_count;
+    anim::Span<float> weights(p->morph_weights[slot].get(), slots);
+    anim::Span<const float> defaults(a.morph.default_weights, a.morph.default_weights ? slots : 0);
+    if (clip < 0 || uint32_t(clip) >= a.clip_count) {
+        anim::rest_pose(k, p->locals[slot].get());
+        for (uint32_t i = 0; i < slots; ++i) weights[i] = defaults.size ? defaults[i] : 0.0f;
+        return;
+    }
+    anim::SamplingJob job;
+    job.skeleton = &k;
+    job.clip = &a.clips[clip];
+    job.time = time;
+    job.wrap = anim::Wrap::loop;
+    job.context = &p->contexts[slot];
+    job.locals = anim::Span<anim::Trs>(p->locals[slot].get(), k.node_count);
+    job.morph_weights = weights;
+    job.default_morph_weights = defaults;
+    job.run();
+}
+
+// Samples (and blends) the pose, then morphs and skins the mesh into
+// p->vertex_positions/normals; static meshes are copied.
+void pose_mesh(Pipeline* p, const AnimationState& state, StageTimes* t, Clock::time_point* clock) {
     const Asset& a = *p->asset;
     const MeshView& m = a.mesh;
     if (!a.skinned) {
@@ -42,17 +67,63 @@ void pose_mesh(Pipeline* p, int clip, float time, StageTimes* t, Clock::time_poi
         return;
     }
     const anim::Skeleton& k = a.skin.skeleton;
-    if (clip >= 0 && uint32_t(clip) < a.clip_count)
-        anim::sample_clip(k, a.clips[clip], time, p->locals.get());
-    else
-        anim::rest_pose(k, p->locals.get());
-    anim::local_to_model(k, p->locals.get(), p->models.get());
+    const uint32_t slots = a.morph.weight_count;
+    sample_pose(p, 0, state.clip, state.time);
+    int pose = 0;
+    if (state.blend_clip >= 0 && state.blend_weight > 0.0f) {
+        // ozz-style weighted layering of the two sampled poses (nlerp of rotations).
+        sample_pose(p, 1, state.blend_clip, state.blend_time);
+        const float w = std::min(state.blend_weight, 1.0f);
+        const anim::BlendLayer layers[2] = {
+            {{p->locals[0].get(), k.node_count}, 1.0f - w, {}, {p->morph_weights[0].get(), slots}},
+            {{p->locals[1].get(), k.node_count}, w, {}, {p->morph_weights[1].get(), slots}}};
+        anim::BlendingJob blend;
+        blend.skeleton = &k;
+        blend.layers = layers;
+        blend.out = anim::Span<anim::Trs>(p->locals[2].get(), k.node_count);
+        blend.out_morph_weights = anim::Span<float>(p->morph_weights[2].get(), slots);
+        if (blend.run()) pose = 2;
+    }
+    anim::local_to_model(k, p->locals[pose].get(), p->models.get());
     anim::joint_matrices(k, p->models.get(), p->skin_matrices.get());
+    anim::SkinningJob skin;
+    skin.method = p->config.skinning;
+    if (skin.method == anim::Skinning::dqs) {
+        uint32_t stretched = 0;
+        anim::dqs_joints({p->skin_matrices.get(), k.joint_count},
+                         {p->dq_joints.get(), k.joint_count}, &stretched);
+        skin.dq_joints = {p->dq_joints.get(), k.joint_count};
+        skin.dq_rigid = stretched == 0;
+    }
     if (t) t->sample += ms_since(clock);
-    anim::SkinJob job = {m.vertex_count, p->skin_matrices.get(), k.joint_count, a.skin.joints,
-                         a.skin.weights, m.positions, m.normals, p->vertex_positions.get(),
-                         p->vertex_normals.get()};
-    anim::skin_lbs(job);
+
+    const size_t floats = size_t(m.vertex_count) * 3;
+    anim::Span<const float> in_positions(m.positions, floats), in_normals(m.normals, floats);
+    anim::Span<float> out_positions(p->vertex_positions.get(), floats);
+    anim::Span<float> out_normals(p->vertex_normals.get(), floats);
+    if (a.has_morph()) {  // morph targets apply in bind space, before skinning
+        anim::MorphJob morph;
+        morph.morph = &a.morph;
+        morph.vertex_count = m.vertex_count;
+        morph.weights = {p->morph_weights[pose].get(), slots};
+        morph.in_positions = in_positions;
+        morph.in_normals = in_normals;
+        morph.out_positions = out_positions;
+        morph.out_normals = out_normals;
+        if (morph.run()) {
+            in_positions = out_positions;
+            in_normals = out_normals;
+        }
+    }
+    skin.vertex_count = m.vertex_count;
+    skin.joint_matrices = {p->skin_matrices.get(), k.joint_count};
+    skin.joints = {a.skin.joints, size_t(m.vertex_count) * 4};
+    skin.weights = {a.skin.weights, size_t(m.vertex_count) * 4};
+    skin.in_positions = in_positions;
+    skin.in_normals = in_normals;
+    skin.out_positions = out_positions;
+    skin.out_normals = out_normals;
+    skin.run();
     if (t) t->skin += ms_since(clock);
 }
 
@@ -106,14 +177,29 @@ bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const Pipel
     p->config = config;
     const uint32_t nodes = asset.skinned ? asset.skin.skeleton.node_count : 0;
     const uint32_t joints = asset.skinned ? asset.skin.skeleton.joint_count : 0;
+    uint32_t max_channels = 0;
+    for (uint32_t c = 0; c < asset.clip_count; ++c)
+        max_channels = std::max(max_channels, asset.clips[c].channel_count);
+    for (int slot = 0; slot < 3; ++slot)
+        if (!alloc(&p->locals[slot], nodes) ||
+            !alloc(&p->morph_weights[slot], asset.morph.weight_count)) {
+            std::snprintf(error, error_size, "out of memory for %u nodes", nodes);
+            return false;
+        }
+    for (int slot = 0; slot < 2; ++slot) {
+        if (!alloc(&p->cursors[slot], max_channels)) {
+            std::snprintf(error, error_size, "out of memory for sampling cursors");
+            return false;
+        }
+        p->contexts[slot].cursors = anim::Span<uint32_t>(p->cursors[slot].get(), max_channels);
+    }
     const size_t verts = asset.mesh.vertex_count, points = asset.points.point_count;
-    if (!alloc(&p->locals, nodes) || !alloc(&p->models, nodes) ||
+    if (!alloc(&p->dq_joints, joints) || !alloc(&p->models, nodes) ||
         !alloc(&p->skin_matrices, joints) || !alloc(&p->vertex_positions, verts * 3) ||
         !alloc(&p->vertex_normals, verts * 3) || !alloc(&p->point_positions, points * 3) ||
         !alloc(&p->point_normals, points * 3) || !alloc(&p->rest_radius, points) ||
         !alloc(&p->radius, points) || !alloc(&p->size, points) ||
-        !alloc(&p->radius_scale, points) ||
-        !alloc(&p->triangle_front, asset.mesh.triangle_count) ||
+        !alloc(&p->radius_scale, points) || !alloc(&p->triangle_front, asset.mesh.triangle_count) ||
         !alloc(&p->lines, size_t(asset.edges.edge_count) * 6)) {
         std::snprintf(error, error_size, "out of memory for %zu points", points);
         return false;
@@ -125,7 +211,7 @@ bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const Pipel
     // Rest pose: camera bounds, and the radii used when relevance updates are off (the baked
     // radii expressed in the same space as the posed mesh).
     Clock::time_point clock = Clock::now();
-    pose_mesh(p, -1, 0.0f, nullptr, &clock);
+    pose_mesh(p, AnimationState(), nullptr, &clock);
     place_points(asset.points, asset.mesh.indices, p->vertex_positions.get(),
                  p->vertex_normals.get(), p->point_positions.get(), p->point_normals.get());
     recompute_relevance(asset.points, p->point_positions.get(), p->radius_scale.get(),
@@ -146,9 +232,16 @@ bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const Pipel
 }
 
 void pipeline_frame(Pipeline* p, int clip, float time, StageTimes* t) {
+    AnimationState state;
+    state.clip = clip;
+    state.time = time;
+    pipeline_frame(p, state, t);
+}
+
+void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
     const Asset& a = *p->asset;
     Clock::time_point clock = Clock::now();
-    pose_mesh(p, clip, time, t, &clock);
+    pose_mesh(p, state, t, &clock);
     place_points(a.points, a.mesh.indices, p->vertex_positions.get(), p->vertex_normals.get(),
                  p->point_positions.get(), p->point_normals.get());
     if (t) t->place += ms_since(&clock);
@@ -176,16 +269,16 @@ void pipeline_frame(Pipeline* p, int clip, float time, StageTimes* t) {
     renderer_draw_mesh(&p->renderer, p->view_projection, p->vertex_positions.get(),
                        a.mesh.vertex_count);
     renderer_draw_lines(&p->renderer, p->view_projection, p->lines.get(), p->lines_drawn);
-    renderer_draw_points(&p->renderer, p->view_projection, p->point_positions.get(),
-                         p->size.get(), a.points.point_count);
+    renderer_draw_points(&p->renderer, p->view_projection, p->point_positions.get(), p->size.get(),
+                         a.points.point_count);
     p->renderer.gl.Finish();
     if (t) t->draw += ms_since(&clock);
 }
 
 glm::vec3 pipeline_project(const Pipeline& p, uint32_t i) {
-    const glm::vec4 clip = p.view_projection * glm::vec4(p.point_positions[i * 3],
-                                                         p.point_positions[i * 3 + 1],
-                                                         p.point_positions[i * 3 + 2], 1.0f);
+    const glm::vec4 clip =
+        p.view_projection * glm::vec4(p.point_positions[i * 3], p.point_positions[i * 3 + 1],
+                                      p.point_positions[i * 3 + 2], 1.0f);
     const glm::vec3 ndc = glm::vec3(clip) / clip.w;
     return glm::vec3((ndc.x * 0.5f + 0.5f) * float(p.config.width),
                      (0.5f - ndc.y * 0.5f) * float(p.config.height), ndc.z * 0.5f + 0.5f);

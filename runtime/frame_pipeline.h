@@ -6,9 +6,8 @@
 // nothing.
 #pragma once
 #include <cstdint>
-#include <memory>
-
 #include <glm/glm.hpp>
+#include <memory>
 
 #include "runtime/asset.h"
 #include "runtime/renderer.h"
@@ -19,17 +18,28 @@ namespace stipple {
 struct PipelineConfig {
     int width = 640;
     int height = 480;
-    float zoom = 1.0f;          // 1: the rest-pose bounds fit the view; 2: twice as large
-    float yaw_degrees = 0.0f;   // camera orbit around the vertical axis
-    float pitch_degrees = 0.0f; // camera elevation
-    float fov_degrees = 30.0f;  // vertical field of view at zoom 1
+    float zoom = 1.0f;             // 1: the rest-pose bounds fit the view; 2: twice as large
+    float yaw_degrees = 0.0f;      // camera orbit around the vertical axis
+    float pitch_degrees = 0.0f;    // camera elevation
+    float fov_degrees = 30.0f;     // vertical field of view at zoom 1
     bool relevance_update = true;  // Alg. 6.4; false keeps rest-pose radii (Alg. 6.3 only)
     float constant_tone = -1.0f;   // in [0,1] to replace lighting
     float max_point_size = 3.0f;
     float smooth_slope = 2.0f;
     float background[3] = {1.0f, 1.0f, 1.0f};
-    bool silhouettes = true;    // draw silhouette lines (needs the asset's EDGE section)
-    float line_width = 1.0f;    // silhouette width in pixels
+    anim::Skinning skinning = anim::Skinning::lbs;  // or dual quaternions (no candy wrapper)
+    bool silhouettes = true;  // draw silhouette lines (needs the asset's EDGE section)
+    float line_width = 1.0f;  // silhouette width in pixels
+};
+
+// What pose to draw: one clip, optionally blended with a second (walk -> run crossfades are
+// a second clip whose weight ramps from 0 to 1).
+struct AnimationState {
+    int clip = -1;        // -1: the rest pose
+    float time = 0.0f;    // seconds; clips loop
+    int blend_clip = -1;  // layered clip, or -1
+    float blend_time = 0.0f;
+    float blend_weight = 0.0f;  // in [0, 1]: 0 shows only `clip`, 1 only `blend_clip`
 };
 
 struct StageTimes {  // milliseconds
@@ -44,24 +54,33 @@ struct Pipeline {
     SizeParams size_params;
     Renderer renderer;
 
-    std::unique_ptr<anim::Trs[]> locals;       // node_count
-    std::unique_ptr<glm::mat4[]> models;       // node_count
-    std::unique_ptr<glm::mat4[]> skin_matrices; // joint_count
+    // Two sampled poses (clip and blend clip) and their blend, each node_count; a sampling
+    // context per slot (cursors: the largest clip's channel count); morph weights per slot.
+    std::unique_ptr<anim::Trs[]> locals[3];
+    std::unique_ptr<uint32_t[]> cursors[2];
+    anim::SamplingContext contexts[2];
+    std::unique_ptr<float[]> morph_weights[3];                  // morph slot count each
+    std::unique_ptr<anim::DqsJoint[]> dq_joints;                // joint_count
+    std::unique_ptr<glm::mat4[]> models;                        // node_count
+    std::unique_ptr<glm::mat4[]> skin_matrices;                 // joint_count
     std::unique_ptr<float[]> vertex_positions, vertex_normals;  // 3 * vertex_count
     std::unique_ptr<float[]> point_positions, point_normals;    // 3 * point_count
-    std::unique_ptr<float[]> radius_scale;  // point_count, see relevance_scale()
-    std::unique_ptr<float[]> rest_radius, radius, size;         // point_count
-    std::unique_ptr<uint8_t[]> triangle_front;                  // triangle_count
-    std::unique_ptr<float[]> lines;                             // 6 * edge_count
-    uint32_t points_drawn = 0;                                  // size > 0 in the last frame
-    uint32_t lines_drawn = 0;                                   // silhouette lines
+    std::unique_ptr<float[]> radius_scale;               // point_count, see relevance_scale()
+    std::unique_ptr<float[]> rest_radius, radius, size;  // point_count
+    std::unique_ptr<uint8_t[]> triangle_front;           // triangle_count
+    std::unique_ptr<float[]> lines;                      // 6 * edge_count
+    uint32_t points_drawn = 0;                           // size > 0 in the last frame
+    uint32_t lines_drawn = 0;                            // silhouette lines
 };
 
 bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const PipelineConfig& config,
                    char* error, size_t error_size);
 
-// Poses the mesh at `time` seconds of clip `clip` (-1: rest pose), then runs every CPU
-// stage and draws. Stage times are added to `times` if it is not null.
+// Poses the mesh as `state` says, then runs every CPU stage and draws. Stage times are added
+// to `times` if it is not null.
+void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* times);
+
+// The same for one clip at `time` seconds (-1: rest pose).
 void pipeline_frame(Pipeline* p, int clip, float time, StageTimes* times);
 
 // Projects point i of the last frame to pixels (origin top-left) and window depth.

@@ -2,6 +2,7 @@
 // an animated PNG, optional per-frame dot lists and timing stats.
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +22,9 @@ const char* kUsage =
     "usage: stipple-play ASSET.stip --out DIR [options]\n"
     "  --out DIR               where frame_NNNN.png and anim.png go (created if missing)\n"
     "  --clip NAME|INDEX       animation clip (default 0; the rest pose if the asset has none)\n"
+    "  --blend CLIP2:W         layer a second clip with weight W in [0,1] (same clock)\n"
+    "  --crossfade CLIP2:S     fade from --clip to CLIP2 over S seconds, starting at --time\n"
+    "  --skinning lbs|dqs      linear blend (default) or dual-quaternion skinning\n"
     "  --frames N              frames to render (default 30, max 100000)\n"
     "  --fps F                 frames per second of animation time (default 30)\n"
     "  --time T0               start time in seconds (default 0); clips loop\n"
@@ -41,7 +45,10 @@ const char* kUsage =
     "  -h, --help              this text\n";
 
 struct Options {
-    std::string asset, out, clip, backend;
+    std::string asset, out, clip, backend, second_clip;
+    enum class Mix { none, blend, crossfade } mix = Mix::none;
+    double mix_amount = 0;  // blend weight, or crossfade seconds
+    bool dqs = false;
     long frames = 30;
     double fps = 30, time0 = 0, zoom = 1, yaw = 0, pitch = 0, tone = -1, point_size = 3;
     int width = 640, height = 480;
@@ -61,8 +68,8 @@ double parse_double(const std::string& option, const char* s, double lo, double 
     double v = std::strtod(s, &end);
     if (end == s || *end != '\0' || !(v >= lo && v <= hi)) {
         char buf[160];
-        std::snprintf(buf, sizeof(buf), "%s must be a number in [%g, %g], got '%s'",
-                      option.c_str(), lo, hi, s);
+        std::snprintf(buf, sizeof(buf), "%s must be a number in [%g, %g], got '%s'", option.c_str(),
+                      lo, hi, s);
         die(buf);
     }
     return v;
@@ -83,6 +90,21 @@ Options parse(int argc, char** argv) {
             o.out = value();
         } else if (a == "--clip") {
             o.clip = value();
+        } else if (a == "--blend" || a == "--crossfade") {
+            std::string v = value();
+            size_t colon = v.rfind(':');
+            if (colon == std::string::npos || colon == 0)
+                die(a + " takes CLIP:" + (a == "--blend" ? "WEIGHT" : "SECONDS") + ", got '" + v +
+                    "'");
+            o.second_clip = v.substr(0, colon);
+            o.mix = a == "--blend" ? Options::Mix::blend : Options::Mix::crossfade;
+            o.mix_amount = a == "--blend"
+                               ? parse_double(a + " weight", v.c_str() + colon + 1, 0, 1)
+                               : parse_double(a + " seconds", v.c_str() + colon + 1, 0.001, 1e4);
+        } else if (a == "--skinning") {
+            std::string v = value();
+            if (v != "lbs" && v != "dqs") die("--skinning must be lbs or dqs, got '" + v + "'");
+            o.dqs = v == "dqs";
         } else if (a == "--frames") {
             o.frames = long(parse_double(a, value(), 1, 100000));
         } else if (a == "--fps") {
@@ -178,6 +200,11 @@ int main(int argc, char** argv) {
         clip = stipple::find_clip(asset, o.clip.c_str());
         if (clip < 0) die("no clip '" + o.clip + "' in " + o.asset);
     }
+    int second = -1;
+    if (o.mix != Options::Mix::none) {
+        second = stipple::find_clip(asset, o.second_clip.c_str());
+        if (second < 0) die("no clip '" + o.second_clip + "' in " + o.asset);
+    }
     mkdir(o.out.c_str(), 0755);
     struct stat info;
     if (stat(o.out.c_str(), &info) != 0 || !S_ISDIR(info.st_mode))
@@ -205,6 +232,7 @@ int main(int argc, char** argv) {
     pc.constant_tone = float(o.tone);
     pc.max_point_size = float(o.point_size);
     pc.silhouettes = o.silhouettes;
+    pc.skinning = o.dqs ? stipple::anim::Skinning::dqs : stipple::anim::Skinning::lbs;
     pc.line_width = float(o.line_width);
     std::memcpy(pc.background, o.background, sizeof(pc.background));
     std::unique_ptr<stipple::Pipeline> pipeline(new stipple::Pipeline());
@@ -225,14 +253,21 @@ int main(int argc, char** argv) {
     if (o.apng && !apng.open((o.out + "/anim.png").c_str(), std::max(fps_num, 1), fps_den, &error))
         die(error);
 
-    const float duration = clip >= 0 ? asset.clips[clip].duration : 0.0f;
     stipple::StageTimes times;
     double frame_ms = 0, drawn = 0;
     for (long f = 0; f < o.frames; ++f) {
-        float t = float(o.time0 + double(f) / o.fps);
-        if (duration > 0) t = std::fmod(std::fmod(t, duration) + duration, duration);
+        // Clips loop (the sampler wraps the time); a crossfade starts CLIP2 at its time 0.
+        const double elapsed = double(f) / o.fps;
+        stipple::AnimationState state;
+        state.clip = clip;
+        state.time = float(o.time0 + elapsed);
+        state.blend_clip = second;
+        state.blend_time = float(o.mix == Options::Mix::crossfade ? elapsed : o.time0 + elapsed);
+        state.blend_weight =
+            float(o.mix == Options::Mix::crossfade ? std::min(elapsed / o.mix_amount, 1.0)
+                                                   : o.mix_amount);
         auto start = std::chrono::steady_clock::now();
-        stipple::pipeline_frame(pipeline.get(), clip, t, &times);
+        stipple::pipeline_frame(pipeline.get(), state, &times);
         auto readback_start = std::chrono::steady_clock::now();
         stipple::renderer_read_color(&pipeline->renderer, rgba.get());
         auto end = std::chrono::steady_clock::now();
@@ -260,9 +295,9 @@ int main(int argc, char** argv) {
             "\"skin\": %.3f, \"place\": %.3f, \"relevance\": %.3f, \"size\": %.3f, "
             "\"silhouette\": %.3f, \"draw\": %.3f, \"readback\": %.3f}}\n",
             o.asset.c_str(), stipple::platform::backend_name(context.backend),
-            context.renderer.c_str(), clip >= 0 ? asset.clips[clip].name : "(rest pose)",
-            o.frames, o.width, o.height, asset.points.point_count, drawn / n, frame_ms / n,
-            times.sample / n, times.skin / n, times.place / n, times.relevance / n, times.size / n,
+            context.renderer.c_str(), clip >= 0 ? asset.clips[clip].name : "(rest pose)", o.frames,
+            o.width, o.height, asset.points.point_count, drawn / n, frame_ms / n, times.sample / n,
+            times.skin / n, times.place / n, times.relevance / n, times.size / n,
             times.silhouette / n, times.draw / n, times.readback / n);
     }
     stipple::pipeline_destroy(pipeline.get());
