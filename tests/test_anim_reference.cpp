@@ -33,8 +33,10 @@
 #include <vector>
 
 #include "anim/anim.h"
+#include "bake/asset_writer.h"
 #include "bake/raw_anim_view.h"
 #include "bake/scene_import.h"
+#include "runtime/asset.h"
 
 namespace {
 
@@ -57,8 +59,8 @@ std::vector<double> read_doubles(const tinygltf::Model& m, int index) {
     if (a.bufferView < 0) return out;
     const tinygltf::BufferView& view = m.bufferViews[size_t(a.bufferView)];
     const size_t stride = view.byteStride ? view.byteStride : size_t(n * csize);
-    const unsigned char* base = m.buffers[size_t(view.buffer)].data.data() + view.byteOffset +
-                                a.byteOffset;
+    const unsigned char* base =
+        m.buffers[size_t(view.buffer)].data.data() + view.byteOffset + a.byteOffset;
     for (size_t i = 0; i < a.count; ++i) {
         for (int c = 0; c < n; ++c) {
             const unsigned char* p = base + i * stride + size_t(c * csize);
@@ -86,7 +88,8 @@ std::vector<double> read_doubles(const tinygltf::Model& m, int index) {
                     break;
                 }
                 default:
-                    ADD_FAILURE() << "component type " << a.componentType << " not in the reference";
+                    ADD_FAILURE() << "component type " << a.componentType
+                                  << " not in the reference";
             }
             out[i * size_t(n) + size_t(c)] = v;
         }
@@ -126,8 +129,8 @@ dquat ref_slerp(dquat a, dquat b, double s) {
 }
 
 // Evaluates sampler `si` of animation `anim` at time t: `width` doubles.
-std::vector<double> eval_sampler(const tinygltf::Model& m, const tinygltf::Animation& anim,
-                                 int si, double t, size_t width, bool rotation) {
+std::vector<double> eval_sampler(const tinygltf::Model& m, const tinygltf::Animation& anim, int si,
+                                 double t, size_t width, bool rotation) {
     const tinygltf::AnimationSampler& s = anim.samplers[size_t(si)];
     const std::vector<double> times = read_doubles(m, s.input);
     const std::vector<double> out = read_doubles(m, s.output);
@@ -188,10 +191,9 @@ struct Reference {
 
     bool load(const std::string& path) {
         tinygltf::TinyGLTF loader;
-        loader.SetImageLoader(
-            [](tinygltf::Image*, const int, std::string*, std::string*, int, int,
-               const unsigned char*, int, void*) { return true; },
-            nullptr);
+        loader.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int,
+                                 const unsigned char*, int, void*) { return true; },
+                              nullptr);
         std::string err, warn;
         const bool binary = path.size() > 4 && path.substr(path.size() - 4) == ".glb";
         const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
@@ -244,8 +246,10 @@ struct Reference {
             if (node.translation.size() == 3)
                 trs[i].t = dvec3(node.translation[0], node.translation[1], node.translation[2]);
             if (node.rotation.size() == 4)
-                trs[i].r = dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
-            if (node.scale.size() == 3) trs[i].s = dvec3(node.scale[0], node.scale[1], node.scale[2]);
+                trs[i].r =
+                    dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+            if (node.scale.size() == 3)
+                trs[i].s = dvec3(node.scale[0], node.scale[1], node.scale[2]);
             if (node.mesh >= 0) {
                 const size_t nt = target_count(model, node.mesh);
                 const tinygltf::Mesh& mesh = model.meshes[size_t(node.mesh)];
@@ -307,7 +311,8 @@ struct Reference {
             for (size_t j = 0; j < skin.joints.size(); ++j) {
                 dmat4 inverse_bind(1.0);
                 if (!ibm.empty()) {
-                    for (int k = 0; k < 16; ++k) inverse_bind[k / 4][k % 4] = ibm[16 * j + size_t(k)];
+                    for (int k = 0; k < 16; ++k)
+                        inverse_bind[k / 4][k % 4] = ibm[16 * j + size_t(k)];
                 }
                 jm.push_back(global[size_t(skin.joints[j])] * inverse_bind);
             }
@@ -331,9 +336,11 @@ struct Reference {
                                                         : read_doubles(model, it->second));
                 }
                 const auto j = prim.attributes.find("JOINTS_0");
-                joints = j == prim.attributes.end() ? std::vector<double>() : read_doubles(model, j->second);
+                joints = j == prim.attributes.end() ? std::vector<double>()
+                                                    : read_doubles(model, j->second);
                 const auto w = prim.attributes.find("WEIGHTS_0");
-                wts = w == prim.attributes.end() ? std::vector<double>() : read_doubles(model, w->second);
+                wts = w == prim.attributes.end() ? std::vector<double>()
+                                                 : read_doubles(model, w->second);
             }
             // Morph targets first (§3.7.2.2), then skinning or the node's transform.
             dvec3 p(pos[3 * c.vertex], pos[3 * c.vertex + 1], pos[3 * c.vertex + 2]);
@@ -354,8 +361,9 @@ struct Reference {
                 for (int k = 0; k < 4; ++k) sum += wts[4 * c.vertex + size_t(k)];
                 dmat4 skin_matrix(0.0);
                 for (int k = 0; k < 4; ++k) {
-                    skin_matrix += wts[4 * c.vertex + size_t(k)] / sum *
-                                   joint_matrices[size_t(node.skin)][size_t(joints[4 * c.vertex + size_t(k)])];
+                    skin_matrix +=
+                        wts[4 * c.vertex + size_t(k)] / sum *
+                        joint_matrices[size_t(node.skin)][size_t(joints[4 * c.vertex + size_t(k)])];
                 }
                 world = skin_matrix * dvec4(p, 1.0);
             } else {
@@ -379,10 +387,28 @@ struct Pipeline {
         out_n_scalar;
     std::vector<uint32_t> cursors;
     stipple::anim::SamplingContext context;
+    stipple::Asset asset;  // when loaded through the .stip asset
 
-    bool load(const std::string& path, std::string* error) {
+    // through_asset: bake the scene into a .stip asset (quantised clips) and sample the
+    // clips the runtime loader decoded, instead of the importer's float keys.
+    bool load(const std::string& path, std::string* error, bool through_asset = false) {
         if (!stipple::bake::import_gltf(path, &scene, error)) return false;
         stipple::bake::make_anim_view(scene, &view);
+        if (through_asset) {
+            stipple::bake::PointHierarchy points;  // one point: the asset needs a hierarchy
+            points.host_triangle = {0};
+            points.bary_u = {0.3f};
+            points.bary_v = {0.3f};
+            points.radius = {1.0f};
+            points.neighbour_offsets = {0, 0};
+            std::vector<uint8_t> bytes = stipple::bake::encode_asset(scene, points);
+            stipple::LoadStatus st = stipple::load_asset_memory(bytes.data(), bytes.size(), &asset);
+            if (!st.ok()) {
+                *error = st.message;
+                return false;
+            }
+            view.clips.assign(asset.clips, asset.clips + asset.clip_count);
+        }
         const size_t n = scene.nodes.size(), nv = scene.vertex_count();
         locals.resize(n);
         models.resize(n);
@@ -395,7 +421,8 @@ struct Pipeline {
         out_p_scalar.resize(nv * 3);
         out_n_scalar.resize(nv * 3);
         size_t max_channels = 0;
-        for (const auto& c : view.clips) max_channels = std::max<size_t>(max_channels, c.channel_count);
+        for (const auto& c : view.clips)
+            max_channels = std::max<size_t>(max_channels, c.channel_count);
         cursors.resize(max_channels);
         context.cursors = stipple::anim::Span<uint32_t>(cursors.data(), cursors.size());
         return true;
@@ -456,13 +483,13 @@ struct Errors {
 };
 
 // Samples every clip at 26 times (both ends and 24 interior times off the key grid).
-Errors compare_with_reference(const std::string& path) {
+Errors compare_with_reference(const std::string& path, bool through_asset = false) {
     Errors e;
     Reference ref;
     EXPECT_TRUE(ref.load(path)) << path;
     Pipeline pipe;
     std::string error;
-    EXPECT_TRUE(pipe.load(path, &error)) << error;
+    EXPECT_TRUE(pipe.load(path, &error, through_asset)) << error;
     if (::testing::Test::HasFailure()) return e;
     EXPECT_EQ(pipe.scene.indices.size(), ref.corners.size()) << "corner lists differ";
     EXPECT_EQ(pipe.view.clips.size(), ref.model.animations.size());
@@ -490,27 +517,47 @@ Errors compare_with_reference(const std::string& path) {
         }
     }
     e.diagonal = glm::length(hi - lo);
-    std::printf("[reference] %s: %zu samples, %zu corners, bbox diagonal %.4g, max error %.3g "
-                "(%.3g of diagonal; scalar path %.3g)\n",
-                path.substr(path.find_last_of('/') + 1).c_str(), e.samples, ref.corners.size(),
-                e.diagonal, e.max_error, e.max_error / e.diagonal, e.max_error_scalar / e.diagonal);
+    std::printf(
+        "[reference%s] %s: %zu samples, %zu corners, bbox diagonal %.4g, max error %.3g "
+        "(%.3g of diagonal; scalar path %.3g)\n",
+        through_asset ? ", via .stip" : "", path.substr(path.find_last_of('/') + 1).c_str(),
+        e.samples, ref.corners.size(), e.diagonal, e.max_error, e.max_error / e.diagonal,
+        e.max_error_scalar / e.diagonal);
     return e;
 }
 
-void expect_within_bound(const std::string& path) {
-    const Errors e = compare_with_reference(path);
+void expect_within_bound(const std::string& path, bool through_asset = false) {
+    const Errors e = compare_with_reference(path, through_asset);
     ASSERT_GT(e.samples, 0u);
     EXPECT_GT(e.diagonal, 0.0);
     EXPECT_LE(e.max_error, 1e-4 * e.diagonal) << path;
     EXPECT_LE(e.max_error_scalar, 1e-4 * e.diagonal) << path;
 }
 
-std::string asset(const char* name) { return std::string(STIPPLE_SOURCE_DIR) + "/assets/" + name; }
+std::string asset(const char* name) {
+    return std::string(STIPPLE_SOURCE_DIR) + "/assets/" + name;
+}
 
-TEST(AnimReference, CesiumMan) { expect_within_bound(asset("CesiumMan/CesiumMan.glb")); }
-TEST(AnimReference, RiggedFigure) { expect_within_bound(asset("RiggedFigure/RiggedFigure.glb")); }
-TEST(AnimReference, RiggedSimple) { expect_within_bound(asset("RiggedSimple/RiggedSimple.glb")); }
-TEST(AnimReference, SimpleSkin) { expect_within_bound(asset("SimpleSkin/SimpleSkin.gltf")); }
+TEST(AnimReference, CesiumMan) {
+    expect_within_bound(asset("CesiumMan/CesiumMan.glb"));
+}
+
+// The same bound holds after the bake quantises the clips (16-bit codes over per-column
+// ranges, docs/format.md) and the runtime loader decodes them.
+TEST(AnimReference, QuantisedClipsInTheAssetStayWithinTheBound) {
+    for (const char* name : {"CesiumMan/CesiumMan.glb", "RiggedFigure/RiggedFigure.glb",
+                             "RiggedSimple/RiggedSimple.glb", "SimpleSkin/SimpleSkin.gltf"})
+        expect_within_bound(asset(name), true);
+}
+TEST(AnimReference, RiggedFigure) {
+    expect_within_bound(asset("RiggedFigure/RiggedFigure.glb"));
+}
+TEST(AnimReference, RiggedSimple) {
+    expect_within_bound(asset("RiggedSimple/RiggedSimple.glb"));
+}
+TEST(AnimReference, SimpleSkin) {
+    expect_within_bound(asset("SimpleSkin/SimpleSkin.gltf"));
+}
 
 // ---------------------------------------------------------------------------------------
 // Generated assets
@@ -528,7 +575,8 @@ struct GltfBuilder {
     int add(const void* data, size_t bytes, int component_type, size_t count, const char* type,
             bool normalized = false) {
         while (bin.size() % 4) bin.push_back(0);
-        doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", bytes}});
+        doc["bufferViews"].push_back(
+            {{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", bytes}});
         const auto* p = static_cast<const uint8_t*>(data);
         bin.insert(bin.end(), p, p + bytes);
         nlohmann::json acc = {{"bufferView", doc["bufferViews"].size() - 1},
@@ -584,7 +632,8 @@ struct Bar {
             }
         }
         for (int r = 0; r < rows; ++r) {
-            const uint16_t a = uint16_t(2 * r), b = uint16_t(a + 1), c = uint16_t(a + 2), d = uint16_t(a + 3);
+            const uint16_t a = uint16_t(2 * r), b = uint16_t(a + 1), c = uint16_t(a + 2),
+                           d = uint16_t(a + 3);
             indices.insert(indices.end(), {a, b, d, a, d, c});
         }
     }
@@ -598,30 +647,31 @@ TEST(AnimReference, GeneratedCubicSplineClip) {
     Bar bar(6);
     const int pos = g.vec3_with_bounds(bar.positions);
     const int nrm = g.floats(bar.normals, "VEC3", 3);
-    const int jnt = g.add(bar.joints.data(), bar.joints.size(), TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                          bar.joints.size() / 4, "VEC4");
+    const int jnt = g.add(bar.joints.data(), bar.joints.size(),
+                          TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, bar.joints.size() / 4, "VEC4");
     const int wgt = g.floats(bar.weights, "VEC4", 4);
     const int idx = g.add(bar.indices.data(), bar.indices.size() * 2,
                           TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, bar.indices.size(), "SCALAR");
-    const std::vector<float> ibm = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,  //
+    const std::vector<float> ibm = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0,  0, 1,  //
                                     1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1};
     const int ibm_acc = g.floats(ibm, "MAT4", 16);
     const std::vector<float> times = {0.0f, 0.4f, 1.1f, 1.5f};
     const int in = g.floats(times, "SCALAR", 1);
     // (in-tangent, value, out-tangent) per key.
-    const std::vector<float> tr = {0, 0, 0, 0, 0, 0, 0.5f, 0.2f, 0,        //
-                                   -0.3f, 0.4f, 0, 0.2f, 0.1f, 0.1f, 0.6f, -0.2f, 0.3f,  //
-                                   1, 0, 0, -0.1f, 0.3f, 0.0f, 0.2f, 0.2f, 0.2f,    //
-                                   0, 0, 0, 0.1f, 0, -0.2f, 0, 0, 0};
+    const std::vector<float> tr = {0,     0,    0, 0,     0,    0,     0.5f, 0.2f,  0,     //
+                                   -0.3f, 0.4f, 0, 0.2f,  0.1f, 0.1f,  0.6f, -0.2f, 0.3f,  //
+                                   1,     0,    0, -0.1f, 0.3f, 0.0f,  0.2f, 0.2f,  0.2f,  //
+                                   0,     0,    0, 0.1f,  0,    -0.2f, 0,    0,     0};
     const float h = std::sqrt(0.5f);
-    const std::vector<float> rot = {0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0.8f, 0.1f,                //
-                                    0.1f, 0, 0.5f, 0, 0, 0, h, h, 0.2f, 0.1f, -0.4f, 0,  //
-                                    0, 0.3f, 0.2f, 0, h, 0, 0, h, 0, -0.5f, 0.1f, 0.2f,  //
-                                    0, 0, 0.3f, 0, 0, 0.38268343f, 0, 0.92387953f, 0, 0, 0, 0};
-    const std::vector<float> scl = {0, 0, 0, 1, 1, 1, 0.5f, 0, 0,           //
-                                    0, 0.3f, 0, 1.2f, 0.9f, 1, 0, -0.4f, 0.2f,  //
-                                    0.1f, 0.1f, 0.1f, 0.8f, 1.1f, 1.3f, 0, 0, 0,  //
-                                    0, 0, 0, 1, 1, 1, 0, 0, 0};
+    const std::vector<float> rot = {
+        0,    0,    0,    0, 0, 0,           0, 1,           0,    0,     0.8f,  0.1f,  //
+        0.1f, 0,    0.5f, 0, 0, 0,           h, h,           0.2f, 0.1f,  -0.4f, 0,     //
+        0,    0.3f, 0.2f, 0, h, 0,           0, h,           0,    -0.5f, 0.1f,  0.2f,  //
+        0,    0,    0.3f, 0, 0, 0.38268343f, 0, 0.92387953f, 0,    0,     0,     0};
+    const std::vector<float> scl = {0,    0,    0,    1,    1,    1,    0.5f, 0,     0,     //
+                                    0,    0.3f, 0,    1.2f, 0.9f, 1,    0,    -0.4f, 0.2f,  //
+                                    0.1f, 0.1f, 0.1f, 0.8f, 1.1f, 1.3f, 0,    0,     0,     //
+                                    0,    0,    0,    1,    1,    1,    0,    0,     0};
     const int out_t = g.floats(tr, "VEC3", 3);
     const int out_r = g.floats(rot, "VEC4", 4);
     const int out_s = g.floats(scl, "VEC3", 3);
@@ -631,9 +681,11 @@ TEST(AnimReference, GeneratedCubicSplineClip) {
     g.doc["nodes"] = {{{"mesh", 0}, {"skin", 0}},
                       {{"children", {2}}, {"translation", {0.0, 0.0, 0.0}}},
                       {{"translation", {0.0, 1.0, 0.0}}}};
-    g.doc["meshes"] = {{{"primitives",
-                         {{{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}, {"JOINTS_0", jnt}, {"WEIGHTS_0", wgt}}},
-                           {"indices", idx}}}}}};
+    g.doc["meshes"] = {
+        {{"primitives",
+          {{{"attributes",
+             {{"POSITION", pos}, {"NORMAL", nrm}, {"JOINTS_0", jnt}, {"WEIGHTS_0", wgt}}},
+            {"indices", idx}}}}}};
     g.doc["skins"] = {{{"joints", {1, 2}}, {"inverseBindMatrices", ibm_acc}}};
     g.doc["animations"] = {
         {{"name", "Cubic"},
@@ -661,6 +713,7 @@ TEST(AnimReference, GeneratedCubicSplineClip) {
     EXPECT_EQ(s.clips[0].channels[0].interp, stipple::bake::RawInterp::cubic_spline);
     EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
     expect_within_bound(path);
+    expect_within_bound(path, true);  // and through the quantised .stip clips
 }
 
 TEST(AnimReference, GeneratedMorphTargets) {
@@ -682,8 +735,8 @@ TEST(AnimReference, GeneratedMorphTargets) {
     }
     const int pos = g.vec3_with_bounds(bar.positions);
     const int nrm = g.floats(bar.normals, "VEC3", 3);
-    const int jnt = g.add(bar.joints.data(), bar.joints.size(), TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                          bar.joints.size() / 4, "VEC4");
+    const int jnt = g.add(bar.joints.data(), bar.joints.size(),
+                          TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, bar.joints.size() / 4, "VEC4");
     const int wgt = g.floats(bar.weights, "VEC4", 4);
     const int idx = g.add(bar.indices.data(), bar.indices.size() * 2,
                           TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, bar.indices.size(), "SCALAR");
@@ -694,7 +747,7 @@ TEST(AnimReference, GeneratedMorphTargets) {
     const int m0 = g.vec3_with_bounds({0, 0, 0.2f, 0, 0, 0, 0, 0, 0});
     const int m1 = g.vec3_with_bounds({0, 0, 0, 0.1f, 0.1f, 0, 0, 0, 0});
     const int m2 = g.vec3_with_bounds({0, 0, 0, 0, 0, 0, -0.1f, 0, 0.3f});
-    const std::vector<float> ibm = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,  //
+    const std::vector<float> ibm = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0,  0, 1,  //
                                     1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1};
     const int ibm_acc = g.floats(ibm, "MAT4", 16);
     const int in = g.floats({0.0f, 0.5f, 1.0f, 2.0f}, "SCALAR", 1);
@@ -702,22 +755,25 @@ TEST(AnimReference, GeneratedMorphTargets) {
     std::vector<float> w_cubic;  // 4 keys x (in, value, out) x 3 weights
     for (int k = 0; k < 4; ++k) {
         const float base = 0.25f * float(k);
-        w_cubic.insert(w_cubic.end(), {0.5f, -0.2f, 0.1f, base, 1 - base, 0.5f * base, -0.4f, 0.3f, 0.2f});
+        w_cubic.insert(w_cubic.end(),
+                       {0.5f, -0.2f, 0.1f, base, 1 - base, 0.5f * base, -0.4f, 0.3f, 0.2f});
     }
     const int w_cub = g.floats(w_cubic, "SCALAR", 1);
-    const int rot_out = g.floats({0, 0, 0, 1, 0, 0, 0.2588190f, 0.9659258f, 0, 0, 0.5f, 0.8660254f,
-                                  0, 0, 0, 1},
-                                 "VEC4", 4);
+    const int rot_out = g.floats(
+        {0, 0, 0, 1, 0, 0, 0.2588190f, 0.9659258f, 0, 0, 0.5f, 0.8660254f, 0, 0, 0, 1}, "VEC4", 4);
     g.doc["scenes"] = {{{"nodes", {0, 1}}}};
-    g.doc["nodes"] = {{{"mesh", 0}, {"skin", 0}},
-                      {{"children", {2}}},
-                      {{"translation", {0.0, 1.0, 0.0}}, {"children", {3}}},
-                      {{"mesh", 1}, {"translation", {0.4, 0.2, 0.0}}, {"weights", {0.3, 0.0, 0.6}}}};
+    g.doc["nodes"] = {
+        {{"mesh", 0}, {"skin", 0}},
+        {{"children", {2}}},
+        {{"translation", {0.0, 1.0, 0.0}}, {"children", {3}}},
+        {{"mesh", 1}, {"translation", {0.4, 0.2, 0.0}}, {"weights", {0.3, 0.0, 0.6}}}};
     g.doc["meshes"] = {
         {{"primitives",
-          {{{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}, {"JOINTS_0", jnt}, {"WEIGHTS_0", wgt}}},
+          {{{"attributes",
+             {{"POSITION", pos}, {"NORMAL", nrm}, {"JOINTS_0", jnt}, {"WEIGHTS_0", wgt}}},
             {"indices", idx},
-            {"targets", {{{"POSITION", t0}, {"NORMAL", tn0}}, {{"POSITION", t1}, {"NORMAL", tn1}}}}}}},
+            {"targets",
+             {{{"POSITION", t0}, {"NORMAL", tn0}}, {{"POSITION", t1}, {"NORMAL", tn1}}}}}}},
          {"weights", {0.5, 0.25}}},
         {{"primitives",
           {{{"attributes", {{"POSITION", tri}}},
@@ -755,7 +811,7 @@ TEST(AnimReference, GeneratedMorphTargets) {
     EXPECT_EQ(s.clips[0].channels[1].weight_begin, 2u);
     EXPECT_EQ(s.clips[0].channels[1].values.size(), 4u * 3u * 3u);
     expect_within_bound(path);
+    expect_within_bound(path, true);  // and through the quantised .stip clips
 }
 
 }  // namespace
-
