@@ -9,9 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "bake/asset_writer.h"
-#include "bake/point_hierarchy.h"
-#include "bake/scene_import.h"
+#include "bench/bench_asset.h"
 #include "platform/headless_context.h"
 #include "runtime/frame_pipeline.h"
 
@@ -40,17 +38,7 @@ Setup* setup(uint32_t points) {
     int slot = points > 50000;
     if (cache[slot]) return cache[slot].get();
     auto s = std::make_unique<Setup>();
-    stipple::bake::RawScene scene;
-    if (!stipple::bake::import_scene(
-            std::string(STIPPLE_SOURCE_DIR) + "/assets/CesiumMan/CesiumMan.glb", &scene, &error))
-        return nullptr;
-    stipple::bake::HierarchyConfig config;
-    config.point_count = points;
-    stipple::bake::PointHierarchy hierarchy;
-    if (!stipple::bake::build_point_hierarchy(scene, config, &hierarchy, nullptr, &error))
-        return nullptr;
-    std::vector<uint8_t> bytes = stipple::bake::encode_asset(scene, hierarchy);
-    if (!stipple::load_asset_memory(bytes.data(), bytes.size(), &s->asset).ok()) return nullptr;
+    if (!stipple::bench::bake_asset("CesiumMan/CesiumMan.glb", points, &s->asset)) return nullptr;
     stipple::GlApi gl;
     if (stipple::load_gl_api(stipple::platform::proc_loader(context), &gl)) return nullptr;
     stipple::PipelineConfig pc;

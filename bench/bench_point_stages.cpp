@@ -12,10 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "bake/asset_writer.h"
-#include "bake/point_hierarchy.h"
-#include "bake/scene_import.h"
-#include "runtime/asset.h"
+#include "bench/bench_asset.h"
 #include "runtime/point_placement.h"
 #include "runtime/stipple_size.h"
 
@@ -30,18 +27,8 @@ Fixture* fixture(uint32_t points) {
     static std::unique_ptr<Fixture> cache[2];
     int slot = points > 50000;
     if (cache[slot]) return cache[slot].get();
-    stipple::bake::RawScene scene;
-    std::string error;
-    std::string path = std::string(STIPPLE_SOURCE_DIR) + "/assets/CesiumMan/CesiumMan.glb";
-    if (!stipple::bake::import_scene(path, &scene, &error)) return nullptr;
-    stipple::bake::HierarchyConfig config;
-    config.point_count = points;
-    stipple::bake::PointHierarchy hierarchy;
-    if (!stipple::bake::build_point_hierarchy(scene, config, &hierarchy, nullptr, &error))
-        return nullptr;
-    std::vector<uint8_t> bytes = stipple::bake::encode_asset(scene, hierarchy);
     auto f = std::make_unique<Fixture>();
-    if (!stipple::load_asset_memory(bytes.data(), bytes.size(), &f->asset).ok()) return nullptr;
+    if (!stipple::bench::bake_asset("CesiumMan/CesiumMan.glb", points, &f->asset)) return nullptr;
     size_t n = f->asset.points.point_count;
     f->pos.resize(n * 3);
     f->nrm.resize(n * 3);
