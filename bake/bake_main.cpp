@@ -19,6 +19,8 @@ const char* kUsage =
     "  -o, --output F   asset to write\n"
     "  --points N       points in the hierarchy (default 20000, max 20000000)\n"
     "  --seed S         random seed (default 1); same input+options+seed = same bytes\n"
+    "  --jitter J       randomize range in [0, 0.75] (default 0.35, thesis §4.4.1)\n"
+    "  --method M       simplify (thesis ch. 4, default) | random (naive baseline)\n"
     "  --normals M      flat | smooth | auto (split at sharp edges) | input (default auto)\n"
     "  --crease DEG     auto normals: dihedral angle that makes an edge sharp (default 40)\n"
     "  --quiet          no progress or summary\n"
@@ -29,6 +31,8 @@ struct Options {
     long points = 20000;
     unsigned long long seed = 1;
     stipple::bake::NormalConfig normals;
+    double jitter = 0.35;
+    stipple::bake::HierarchyMethod method = stipple::bake::HierarchyMethod::simplify;
     bool quiet = false;
 };
 
@@ -66,12 +70,27 @@ Options parse(int argc, char** argv) {
             char* end = nullptr;
             o.seed = std::strtoull(s, &end, 10);
             if (end == s || *end != '\0') die("--seed must be a non-negative integer");
+        } else if (a == "--jitter") {
+            const char* v = value();
+            char* end = nullptr;
+            o.jitter = std::strtod(v, &end);
+            if (end == v || *end != '\0' || !(o.jitter >= 0 && o.jitter <= 0.75))
+                die("--jitter must be a number in [0, 0.75]");
+        } else if (a == "--method") {
+            std::string m = value();
+            if (m == "simplify")
+                o.method = stipple::bake::HierarchyMethod::simplify;
+            else if (m == "random")
+                o.method = stipple::bake::HierarchyMethod::random;
+            else
+                die("--method must be simplify or random, got '" + m + "'");
         } else if (a == "--normals") {
             if (!stipple::bake::parse_normal_mode(value(), &o.normals.mode))
                 die("--normals must be flat, smooth, auto or input");
         } else if (a == "--crease") {
             long degrees = 0;
-            if (!parse_long(value(), 0, 180, &degrees)) die("--crease must be an integer in [0, 180]");
+            if (!parse_long(value(), 0, 180, &degrees))
+                die("--crease must be an integer in [0, 180]");
             o.normals.crease_degrees = float(degrees);
         } else if (a == "--quiet") {
             o.quiet = true;
@@ -119,19 +138,21 @@ int main(int argc, char** argv) {
     if (!import_scene(o.input, &scene, &error)) die(error);
     assign_normals(o.normals, &scene);
     if (!o.quiet)
-        for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+        for (const std::string& w : scene.warnings)
+            std::fprintf(stderr, "warning: %s\n", w.c_str());
 
     Progress progress;
     progress.quiet = o.quiet;
     HierarchyConfig config;
     config.point_count = uint32_t(o.points);
     config.seed = o.seed;
+    config.jitter = float(o.jitter);
+    config.method = o.method;
     config.progress = on_progress;
     config.progress_user = &progress;
     PointHierarchy points;
     HierarchyStats stats;
-    if (!build_point_hierarchy(scene, config, &points, &stats, &error))
-        die(o.input + ": " + error);
+    if (!build_point_hierarchy(scene, config, &points, &stats, &error)) die(o.input + ": " + error);
     if (points.size() < size_t(o.points) && !o.quiet)
         std::fprintf(stderr, "warning: only %zu points could be built\n", points.size());
 
@@ -140,7 +161,8 @@ int main(int argc, char** argv) {
     // bake never leaves an asset the runtime would refuse.
     stipple::Asset check;
     stipple::LoadStatus loaded = stipple::load_asset_memory(bytes.data(), bytes.size(), &check);
-    if (!loaded.ok()) die(std::string("internal error: baked asset does not load: ") + loaded.message);
+    if (!loaded.ok())
+        die(std::string("internal error: baked asset does not load: ") + loaded.message);
     if (!write_asset(o.output, bytes, &error)) die(error);
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!o.quiet) {

@@ -4,9 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <queue>
 #include <tuple>
+
+#include "bake/surface_projection.h"
 
 namespace stipple::bake {
 
@@ -44,28 +47,6 @@ Vec3 input_position(const RawScene& s, uint32_t vertex) {
     return Vec3(p[0], p[1], p[2]);
 }
 
-// Barycentric weights (u, v) of `p` in input triangle `t`, for a point known to lie in it
-// up to rounding: least-squares solve in the triangle's plane, then clamp into the
-// triangle so the runtime always gets valid coordinates.
-void barycentric_in(const RawScene& s, uint32_t t, const Vec3& p, double* u, double* v) {
-    const uint32_t* tri = &s.indices[size_t(t) * 3];
-    Vec3 a = input_position(s, tri[0]), b = input_position(s, tri[1]), c = input_position(s, tri[2]);
-    Vec3 e0 = a - c, e1 = b - c, d = p - c;
-    double d00 = e0 | e0, d01 = e0 | e1, d11 = e1 | e1, d20 = d | e0, d21 = d | e1;
-    double den = d00 * d11 - d01 * d01;
-    double bu = den > 0 ? (d11 * d20 - d01 * d21) / den : 1.0 / 3;
-    double bv = den > 0 ? (d00 * d21 - d01 * d20) / den : 1.0 / 3;
-    bu = std::max(bu, 0.0);
-    bv = std::max(bv, 0.0);
-    double sum = bu + bv;
-    if (sum > 1) {
-        bu /= sum;
-        bv /= sum;
-    }
-    *u = bu;
-    *v = bv;
-}
-
 // Welds vertices at the same position (within eps) so that seams split for UVs or normals
 // do not cut the connectivity graph (thesis §4.1).
 std::vector<uint32_t> weld(const RawScene& s, double eps, uint32_t* welded_count) {
@@ -97,9 +78,70 @@ struct Builder {
     Mesh mesh;
     OpenMesh::FPropHandleT<uint32_t> host_face;  // input triangle each face lies in
     std::vector<PointRecord> points;             // indexed like mesh vertices
+    std::vector<uint32_t> welded;                // input vertex -> position class
+    std::unique_ptr<InputSurface> surface;
+    uint64_t rng;
 
-    Builder(const RawScene& s, const HierarchyConfig& c) : scene(s), config(c) {
+    Builder(const RawScene& s, const HierarchyConfig& c) : scene(s), config(c), rng(c.seed) {
         mesh.add_property(host_face);
+    }
+
+    double uniform() { return double(splitmix64(&rng) >> 11) * (1.0 / 9007199254740992.0); }
+
+    // A random point of the triangle (p, a, b) within `jitter` of p: s, t uniform over the
+    // corner triangle s + t <= 1, scaled (§4.4.1 "a small region between the input vertex and
+    // the other vertices of the face").
+    Vec3 jittered(const Vec3& p, const Vec3& a, const Vec3& b) {
+        double s = uniform(), t = uniform();
+        if (s + t > 1) {
+            s = 1 - s;
+            t = 1 - t;
+        }
+        const double j = double(config.jitter);
+        return p + (a - p) * (s * j) + (b - p) * (t * j);
+    }
+
+    // True if moving vertex v to q flips none of its faces (a fold, §4.4.2 "invalid
+    // projection"): each face normal keeps its side.
+    bool move_is_valid(Mesh::VertexHandle v, const Vec3& q) const {
+        for (Mesh::ConstVertexOHalfedgeIter h = mesh.cvoh_iter(v); h.is_valid(); ++h) {
+            if (!mesh.face_handle(*h).is_valid()) continue;
+            const Vec3 a = mesh.point(mesh.to_vertex_handle(*h));
+            const Vec3 b = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(*h)));
+            const Vec3 before = (a - mesh.point(v)) % (b - mesh.point(v));
+            const Vec3 after = (a - q) % (b - q);
+            if ((before | after) <= 0) return false;
+        }
+        return true;
+    }
+
+    void set_surface_point(Mesh::VertexHandle v, const SurfacePoint& sp) {
+        mesh.point(v) = sp.position;
+        PointRecord& r = points[size_t(v.idx())];
+        r.host = sp.host;
+        r.u = sp.u;
+        r.v = sp.v;
+    }
+
+    // Thesis Alg. 4.4: randomize every input vertex inside a random incident face. The
+    // moved vertex stays in that face, so it is on the input surface without projection.
+    void randomize_inputs() {
+        if (config.jitter <= 0) return;
+        for (Mesh::VertexHandle v : mesh.vertices()) {
+            std::vector<Mesh::HalfedgeHandle> out;
+            for (Mesh::VertexOHalfedgeIter h = mesh.voh_iter(v); h.is_valid(); ++h)
+                if (mesh.face_handle(*h).is_valid()) out.push_back(*h);
+            if (out.empty()) continue;
+            Mesh::HalfedgeHandle h = out[size_t(splitmix64(&rng) % out.size())];
+            const Vec3 a = mesh.point(mesh.to_vertex_handle(h));
+            const Vec3 b = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
+            const Vec3 q = jittered(mesh.point(v), a, b);
+            if (!move_is_valid(v, q)) {
+                ++stats.discarded_randomizations;
+                continue;
+            }
+            set_surface_point(v, surface->locate(mesh.property(host_face, mesh.face_handle(h)), q));
+        }
     }
 
     void report(float fraction) {
@@ -131,6 +173,7 @@ struct Builder {
         uint32_t welded_count = 0;
         std::vector<uint32_t> remap =
             weld(scene, std::max(diag * config.weld_epsilon, 1e-12), &welded_count);
+        welded = remap;
         stats.welded_vertices = welded_count;
         std::vector<Mesh::VertexHandle> handle(welded_count);
         for (uint32_t t = 0; t < scene.triangle_count(); ++t) {
@@ -138,7 +181,8 @@ struct Builder {
             uint32_t w[3] = {remap[tri[0]], remap[tri[1]], remap[tri[2]]};
             Vec3 p[3] = {input_position(scene, tri[0]), input_position(scene, tri[1]),
                          input_position(scene, tri[2])};
-            if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2] || ((p[1] - p[0]) % (p[2] - p[0])).norm() == 0) {
+            if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2] ||
+                ((p[1] - p[0]) % (p[2] - p[0])).norm() == 0) {
                 ++stats.skipped_faces;
                 continue;
             }
@@ -183,7 +227,6 @@ struct Builder {
         using Entry = std::pair<double, int>;  // (length, edge), smallest first
         std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
         auto length = [&](Mesh::EdgeHandle e) { return m.calc_edge_length(e); };
-        uint64_t rng = config.seed;
         size_t remaining = m.n_vertices(), total = remaining;
         for (int pass = 0; pass < 4; ++pass) {
             size_t before = remaining;
@@ -219,38 +262,105 @@ struct Builder {
         }
     }
 
-    // Thesis Alg. 4.2: split the longest edge at its midpoint until the point budget is met;
-    // the new vertex's one-ring are its relevant neighbours. Every face of the refined
-    // mesh lies inside one input triangle (its host face property), so the midpoint's
-    // barycentrics in that triangle are exact.
+    using Heap = std::priority_queue<std::pair<double, int>>;  // (length, edge), longest first
+
+    // Thesis Alg. 4.3, refineLocal: an edge is split only when it is the longest edge of the
+    // faces on both its sides; otherwise that longer edge is refined first. This keeps
+    // bisection from creating slivers even where randomization made edges uneven.
+    void refine_local(Mesh::EdgeHandle e, Heap* heap, int depth) {
+        for (int round = 0; round < 8; ++round) {
+            const double len = mesh.calc_edge_length(e);
+            Mesh::EdgeHandle longest = e;
+            double longest_len = len;
+            for (int side = 0; side < 2; ++side) {
+                Mesh::HalfedgeHandle h = mesh.halfedge_handle(e, side);
+                if (!mesh.face_handle(h).is_valid()) continue;
+                for (Mesh::HalfedgeHandle g :
+                     {mesh.next_halfedge_handle(h), mesh.prev_halfedge_handle(h)}) {
+                    const double l = mesh.calc_edge_length(mesh.edge_handle(g));
+                    if (l > longest_len * (1 + 1e-9)) {
+                        longest = mesh.edge_handle(g);
+                        longest_len = l;
+                    }
+                }
+            }
+            if (longest == e || depth > 16) break;
+            refine_local(longest, heap, depth + 1);
+            ++stats.legal_splits;
+        }
+        split(e, heap);
+    }
+
+    // Thesis Alg. 4.5 for one edge: split at the midpoint, project onto the input surface
+    // along the summed normals of the neighbourhood, randomize inside a random incident face
+    // and project again; a randomization that folds the mesh is discarded. The new vertex's
+    // one-ring are its relevant neighbours (§4.5).
+    void split(Mesh::EdgeHandle e, Heap* heap) {
+        const Mesh::HalfedgeHandle h = mesh.halfedge_handle(e, 0);
+        const Mesh::VertexHandle a = mesh.from_vertex_handle(h), b = mesh.to_vertex_handle(h);
+        uint32_t seeds[4];
+        int seed_count = 0;
+        seeds[seed_count++] = points[size_t(a.idx())].host;
+        seeds[seed_count++] = points[size_t(b.idx())].host;
+        for (Mesh::HalfedgeHandle side : {h, mesh.opposite_halfedge_handle(h)})
+            if (mesh.face_handle(side).is_valid())
+                seeds[seed_count++] =
+                    points[size_t(mesh.to_vertex_handle(mesh.next_halfedge_handle(side)).idx())]
+                        .host;
+        Vec3 direction(0, 0, 0);
+        for (int i = 0; i < seed_count; ++i) direction += surface->normal(seeds[i]);
+        const Vec3 mid = (mesh.point(a) + mesh.point(b)) * 0.5;
+        const SurfacePoint projected = surface->project(mid, direction, seeds, seed_count);
+
+        points.push_back(PointRecord());
+        const Mesh::VertexHandle v = mesh.add_vertex(projected.position);
+        mesh.split_copy(e, v);
+        set_surface_point(v, projected);
+        if (config.jitter > 0) {
+            std::vector<Mesh::HalfedgeHandle> out;
+            for (Mesh::VertexOHalfedgeIter o = mesh.voh_iter(v); o.is_valid(); ++o)
+                if (mesh.face_handle(*o).is_valid()) out.push_back(*o);
+            if (!out.empty()) {
+                Mesh::HalfedgeHandle o = out[size_t(splitmix64(&rng) % out.size())];
+                const Vec3 q =
+                    jittered(projected.position, mesh.point(mesh.to_vertex_handle(o)),
+                             mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(o))));
+                seeds[0] = projected.host;
+                const SurfacePoint moved = surface->project(q, direction, seeds, seed_count);
+                if (move_is_valid(v, moved.position))
+                    set_surface_point(v, moved);
+                else
+                    ++stats.discarded_randomizations;
+            }
+        }
+        PointRecord& added = points.back();
+        added.neighbours = one_ring(mesh, v);
+        added.radius =
+            kBisectionRadiusScale * mean_distance(uint32_t(v.idx()), added.neighbours, mesh);
+        for (Mesh::VertexEdgeIter it = mesh.ve_iter(v); it.is_valid(); ++it)
+            heap->push({mesh.calc_edge_length(*it), it->idx()});
+        for (Mesh::VertexVertexIter it = mesh.vv_iter(v); it.is_valid(); ++it)
+            for (Mesh::VertexEdgeIter e2 = mesh.ve_iter(*it); e2.is_valid(); ++e2)
+                heap->push({mesh.calc_edge_length(*e2), e2->idx()});
+    }
+
+    // Thesis Alg. 4.2/4.5: split the longest edge until the point budget is met.
     void subdivide(size_t target) {
-        using Entry = std::pair<double, int>;  // (length, edge), longest first
-        std::priority_queue<Entry> heap;
+        Heap heap;
         for (Mesh::EdgeHandle e : mesh.edges()) heap.push({mesh.calc_edge_length(e), e.idx()});
-        size_t start = mesh.n_vertices();
+        const size_t start = mesh.n_vertices();
+        size_t reported = 0;
         while (mesh.n_vertices() < target && !heap.empty()) {
             auto [len, idx] = heap.top();
             heap.pop();
             Mesh::EdgeHandle e(idx);
             if (mesh.calc_edge_length(e) != len) continue;  // stale entry
-            Mesh::HalfedgeHandle h = mesh.halfedge_handle(e, 0);
-            Mesh::FaceHandle f = mesh.face_handle(h);
-            if (!f.is_valid()) f = mesh.face_handle(mesh.opposite_halfedge_handle(h));
-            Vec3 mid = (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h))) * 0.5;
-            PointRecord r;
-            r.host = mesh.property(host_face, f);
-            barycentric_in(scene, r.host, mid, &r.u, &r.v);
-            points.push_back(r);
-            Mesh::VertexHandle v = mesh.add_vertex(mid);
-            mesh.split_copy(e, v);
-            PointRecord& added = points.back();
-            added.neighbours = one_ring(mesh, v);
-            added.radius = kBisectionRadiusScale *
-                           mean_distance(uint32_t(v.idx()), added.neighbours, mesh);
-            for (Mesh::VertexEdgeIter it = mesh.ve_iter(v); it.is_valid(); ++it)
-                heap.push({mesh.calc_edge_length(*it), it->idx()});
-            size_t done = mesh.n_vertices() - start;
-            if (done % 4096 == 0) report(0.5f + 0.5f * float(done) / float(target - start));
+            refine_local(e, &heap, 0);
+            const size_t done = mesh.n_vertices() - start;
+            if (done - reported >= 4096) {
+                reported = done;
+                report(0.5f + 0.5f * float(done) / float(target - start));
+            }
         }
     }
 };
@@ -260,9 +370,8 @@ struct Builder {
 void order_and_emit(const std::vector<PointRecord>& points, size_t count, PointHierarchy* out) {
     std::vector<uint32_t> order(points.size());
     std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-        return points[a].radius > points[b].radius;
-    });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](uint32_t a, uint32_t b) { return points[a].radius > points[b].radius; });
     order.resize(std::min(count, order.size()));
     std::vector<uint32_t> rank(points.size(), UINT32_MAX);
     for (uint32_t i = 0; i < order.size(); ++i) rank[order[i]] = i;
@@ -298,6 +407,8 @@ bool build_point_hierarchy(const RawScene& scene, const HierarchyConfig& config,
         *error = "mesh has no non-degenerate triangles";
         return false;
     }
+    b.surface = std::make_unique<InputSurface>(scene, b.welded);
+    b.randomize_inputs();
     b.simplify();
     size_t input_points = b.points.size();
     b.subdivide(config.point_count);

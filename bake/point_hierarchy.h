@@ -20,9 +20,18 @@ struct PointHierarchy {
     size_t size() const { return host_triangle.size(); }
 };
 
+enum class HierarchyMethod {
+    simplify,  // thesis ch. 4: randomize + project, simplification and legal subdivision
+    random,    // naive baseline: uniformly random surface points in random order
+};
+
 struct HierarchyConfig {
-    uint32_t point_count = 20000;  // total points wanted (at least the welded vertex count)
-    uint64_t seed = 1;             // picks which end of a collapsed edge is removed
+    HierarchyMethod method = HierarchyMethod::simplify;
+    uint32_t point_count = 20000;  // total points wanted
+    uint64_t seed = 1;             // randomization, and which end of a collapsed edge goes
+    // Randomize operator range (§4.4.1, Fig. 4.11 shows 15%, 35% and 75%): a vertex moves
+    // up to this fraction of the way towards the other corners of a random incident face.
+    float jitter = 0.35f;
     float weld_epsilon = 1e-6f;    // relative to the bounding-box diagonal
     // Called now and then with progress in [0, 1]; may be null.
     void (*progress)(float fraction, void* user) = nullptr;
@@ -35,6 +44,8 @@ struct HierarchyStats {
     uint32_t split_vertices = 0;     // vertices duplicated to keep the mesh manifold
     uint32_t simplified_points = 0;  // points from input vertices (Alg. 4.1)
     uint32_t subdivided_points = 0;  // points from edge splits (Alg. 4.2)
+    uint32_t discarded_randomizations = 0;  // moves undone because they folded the mesh
+    uint32_t legal_splits = 0;       // extra splits made by refineLocal (Alg. 4.3)
 };
 
 bool build_point_hierarchy(const RawScene& scene, const HierarchyConfig& config,
