@@ -389,6 +389,36 @@ void order_and_emit(const std::vector<PointRecord>& points, size_t count, PointH
     }
 }
 
+// The naive baseline: `count` points uniformly distributed by area over the input triangles,
+// in random order, without neighbours; radius[i] = sqrt(area / (i + 1)), the spacing a
+// prefix of i + 1 points would have if it were even (kRegionPerRadiusSquared = 1).
+void random_points(const RawScene& scene, const HierarchyConfig& config, PointHierarchy* out) {
+    std::vector<double> cumulative(scene.triangle_count());
+    double area = 0;
+    for (uint32_t t = 0; t < scene.triangle_count(); ++t) {
+        const uint32_t* i = &scene.indices[size_t(t) * 3];
+        Vec3 a = input_position(scene, i[0]), b = input_position(scene, i[1]),
+             c = input_position(scene, i[2]);
+        area += 0.5 * ((b - a) % (c - a)).norm();
+        cumulative[t] = area;
+    }
+    uint64_t rng = config.seed;
+    auto uniform = [&]() { return double(splitmix64(&rng) >> 11) * (1.0 / 9007199254740992.0); };
+    *out = PointHierarchy();
+    out->neighbour_offsets.assign(size_t(config.point_count) + 1, 0);
+    for (uint32_t i = 0; i < config.point_count; ++i) {
+        const double pick = uniform() * area;
+        uint32_t t = uint32_t(std::upper_bound(cumulative.begin(), cumulative.end(), pick) -
+                              cumulative.begin());
+        t = std::min<uint32_t>(t, uint32_t(scene.triangle_count() - 1));
+        double r1 = std::sqrt(uniform()), r2 = uniform();  // uniform over the triangle
+        out->host_triangle.push_back(t);
+        out->bary_u.push_back(float(1 - r1));
+        out->bary_v.push_back(float(r1 * (1 - r2)));
+        out->radius.push_back(float(std::sqrt(area / double(i + 1))));
+    }
+}
+
 }  // namespace
 
 bool build_point_hierarchy(const RawScene& scene, const HierarchyConfig& config,
@@ -400,6 +430,11 @@ bool build_point_hierarchy(const RawScene& scene, const HierarchyConfig& config,
     if (config.point_count == 0) {
         *error = "point count must be positive";
         return false;
+    }
+    if (config.method == HierarchyMethod::random) {
+        random_points(scene, config, out);
+        if (stats) *stats = HierarchyStats();
+        return true;
     }
     Builder b(scene, config);
     b.build_graph();
