@@ -50,10 +50,7 @@ EncodedPoints encode_points(const PointHierarchy& p, uint32_t triangle_count) {
     if (out.radius_max <= 0.0f) out.radius_max = 1.0f;
     BitWriter w;
     const uint32_t bary_max = (1u << codec::kBaryBits) - 1;
-    uint32_t previous_host = 0;
     for (uint32_t i = 0; i < p.size(); ++i) {
-        w.zigzag(int32_t(p.host_triangle[i] - previous_host), codec::host_order(triangle_count));
-        previous_host = p.host_triangle[i];
         uint32_t u = quantize_unit(p.bary_u[i]);
         uint32_t v = std::min(quantize_unit(p.bary_v[i]), bary_max - u);
         w.bits(u, codec::kBaryBits);
@@ -74,6 +71,16 @@ EncodedPoints encode_points(const PointHierarchy& p, uint32_t triangle_count) {
             else
                 w.golomb(n[j - 1] - n[j] - 1, k);
         }
+        // The host triangle, predicted from an already coded neighbour's host: neighbours
+        // are close on the surface, so with a spatially coherent triangle order the delta is
+        // small.
+        const int32_t reference = codec::host_reference(i, n.data(), uint32_t(n.size()));
+        const bool predicted = reference >= 0;
+        const uint32_t base = predicted ? p.host_triangle[uint32_t(reference)]
+                              : i > 0   ? p.host_triangle[i - 1]
+                                        : 0;
+        w.zigzag(int32_t(p.host_triangle[i] - base),
+                 predicted ? codec::kPredictedHostOrder : codec::host_order(triangle_count));
     }
     out.bit_count = w.at;
     out.bytes = std::move(w.bytes);

@@ -238,35 +238,38 @@ LoadStatus parse_morph(Reader r, uint32_t vertex_count, Asset* a) {
 // One pass over the point stream (thesis §4.5 fields, coded as in point_codec.h). With
 // out == nullptr it only counts neighbours so the caller can size the arrays.
 bool decode_point_stream(codec::BitReader r, uint32_t point_count, float radius_max,
-                         uint32_t triangle_count, PointsView* out, uint32_t* neighbour_total,
-                         char* why, size_t why_size) {
-    uint32_t host = 0, total = 0;
+                         uint32_t triangle_count, uint32_t* host, PointsView* out,
+                         uint32_t* neighbour_total, char* why, size_t why_size) {
+    uint32_t total = 0, list[codec::kMaxNeighbours];
     const float bary_scale = 1.0f / float((1u << codec::kBaryBits) - 1);
     for (uint32_t i = 0; i < point_count; ++i) {
-        host += uint32_t(r.zigzag(codec::host_order(triangle_count)));
         uint32_t u = r.bits(codec::kBaryBits), v = r.bits(codec::kBaryBits);
         uint32_t q = r.bits(codec::kRadiusBits), n = r.bits(codec::kCountBits);
-        if (!r.ok) break;
-        if (host >= triangle_count || u + v > (1u << codec::kBaryBits) - 1) {
-            std::snprintf(why, why_size,
-                          "point %u host triangle %u (of %u) or barycentrics invalid", i, host,
-                          triangle_count);
-            return false;
-        }
         const int k = codec::neighbour_order(i);
-        uint32_t previous = 0;
         for (uint32_t j = 0; j < n && r.ok; ++j) {
-            int64_t index = j == 0 ? int64_t(i) - r.zigzag(k) : int64_t(previous) - 1 - r.golomb(k);
+            int64_t index =
+                j == 0 ? int64_t(i) - r.zigzag(k) : int64_t(list[j - 1]) - 1 - r.golomb(k);
             if (index < 0 || index >= int64_t(point_count)) {
                 std::snprintf(why, why_size, "point %u neighbour %lld out of range", i,
                               static_cast<long long>(index));
                 return false;
             }
-            previous = uint32_t(index);
-            if (out) const_cast<uint32_t*>(out->neighbours)[total + j] = previous;
+            list[j] = uint32_t(index);
+        }
+        const int32_t reference = codec::host_reference(i, list, n);
+        const uint32_t base = reference >= 0 ? host[reference] : i > 0 ? host[i - 1] : 0;
+        host[i] = base + uint32_t(r.zigzag(reference >= 0 ? codec::kPredictedHostOrder
+                                                          : codec::host_order(triangle_count)));
+        if (!r.ok) break;
+        if (host[i] >= triangle_count || u + v > (1u << codec::kBaryBits) - 1) {
+            std::snprintf(why, why_size,
+                          "point %u host triangle %u (of %u) or barycentrics invalid", i, host[i],
+                          triangle_count);
+            return false;
         }
         if (out) {
-            const_cast<uint32_t*>(out->host_triangle)[i] = host;
+            for (uint32_t j = 0; j < n; ++j)
+                const_cast<uint32_t*>(out->neighbours)[total + j] = list[j];
             const_cast<float*>(out->bary_u)[i] = float(u) * bary_scale;
             const_cast<float*>(out->bary_v)[i] = float(v) * bary_scale;
             const_cast<float*>(out->radius)[i] =
@@ -298,13 +301,20 @@ LoadStatus parse_point_stream(Reader r, uint32_t triangle_count, Asset* a) {
                     static_cast<unsigned long long>(*bit_count), r.size - r.at);
     char why[120] = {};
     uint32_t total = 0;
-    if (!decode_point_stream(bits, point_count, *radius_max, triangle_count, nullptr, &total, why,
-                             sizeof(why)))
-        return fail(LoadError::out_of_range, "PNTQ: %s", why);
-    // host, u, v, radius (4 words each per point), offsets (P + 1), neighbours.
-    const size_t words = size_t(point_count) * 5 + 1 + total;
-    a->point_storage.reset(new (std::nothrow) uint32_t[words]);
+    // Hosts are decoded in the first pass (later hosts are predicted from earlier ones);
+    // the second pass fills the other arrays once the neighbour count is known.
+    a->point_storage.reset(new (std::nothrow) uint32_t[size_t(point_count) + 1]);
     if (!a->point_storage) return fail(LoadError::malformed_section, "PNTQ: out of memory");
+    if (!decode_point_stream(bits, point_count, *radius_max, triangle_count, a->point_storage.get(),
+                             nullptr, &total, why, sizeof(why)))
+        return fail(LoadError::out_of_range, "PNTQ: %s", why);
+    // host (kept from the first pass), u, v, radius (one word each per point), offsets
+    // (P + 1), neighbours.
+    const size_t words = size_t(point_count) * 5 + 1 + total;
+    std::unique_ptr<uint32_t[]> storage(new (std::nothrow) uint32_t[words]);
+    if (!storage) return fail(LoadError::malformed_section, "PNTQ: out of memory");
+    std::memcpy(storage.get(), a->point_storage.get(), size_t(point_count) * 4);
+    a->point_storage = std::move(storage);
     uint32_t* w = a->point_storage.get();
     PointsView& p = a->points;
     p.point_count = point_count;
@@ -316,7 +326,7 @@ LoadStatus parse_point_stream(Reader r, uint32_t triangle_count, Asset* a) {
     p.neighbours = w + size_t(point_count) * 5 + 1;
     p.neighbour_count = total;
     w[size_t(point_count) * 4] = 0;
-    decode_point_stream(bits, point_count, *radius_max, triangle_count, &p, &total, why,
+    decode_point_stream(bits, point_count, *radius_max, triangle_count, w, &p, &total, why,
                         sizeof(why));
     return {};
 }

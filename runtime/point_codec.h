@@ -1,13 +1,14 @@
 // Compact point hierarchy coding (format version 1, section PNTQ): one bit stream holding,
 // per point in hierarchy order,
-//   host triangle   zigzag delta from the previous point's host, Exp-Golomb code whose
-//                   order follows log2(triangle count) (hosts are spread over the mesh)
 //   u, v            barycentrics, 12 bits each (round to nearest, v clamped so u + v <= 1)
 //   radius          12-bit log code: r = r_max * 2^(-q / 256), q = 4095 means 0
-//   neighbour count 4 bits (lists are cut to the 15 nearest at bake)
+//   neighbour count 4 bits (lists are cut to 15 at bake)
 //   neighbours      sorted descending; the first as a zigzag offset from the point's own
 //                   index, the rest as gaps - 1; Exp-Golomb codes whose order grows with
 //                   log2(index), because relevant neighbours sit at levels of similar size
+//   host triangle   zigzag delta from the host of the first neighbour below the point's
+//                   index (Exp-Golomb order 4: neighbours are close on the surface), or,
+//                   without one, from the previous point's host (order log2(T) - 2)
 // Errors: barycentric +-1/8190 of the host triangle's extent (the point stays exactly on the
 // triangle), radius +-0.14% (half of 2^(1/256) - 1). Decoding is bounds-checked and returns
 // false on a malformed stream.
@@ -31,10 +32,19 @@ inline int floor_log2(uint32_t x) {
 
 // Exp-Golomb order of point i's neighbour offsets.
 inline int neighbour_order(uint32_t i) {
-    return floor_log2(i) > 3 ? floor_log2(i) - 3 : 0;
+    return floor_log2(i) > 2 ? floor_log2(i) - 2 : 0;
 }
 
-// Exp-Golomb order of host triangle deltas.
+// The neighbour whose host triangle predicts point i's host: the first (largest) neighbour
+// index below i, decoded earlier; -1 if none (then the previous point's host is used).
+inline int32_t host_reference(uint32_t i, const uint32_t* sorted_descending, uint32_t count) {
+    for (uint32_t j = 0; j < count; ++j)
+        if (sorted_descending[j] < i) return int32_t(sorted_descending[j]);
+    return -1;
+}
+constexpr int kPredictedHostOrder = 4;
+
+// Exp-Golomb order of host triangle deltas without a prediction.
 inline int host_order(uint32_t triangle_count) {
     return floor_log2(triangle_count) > 2 ? floor_log2(triangle_count) - 2 : 0;
 }
