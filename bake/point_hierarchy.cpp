@@ -339,9 +339,6 @@ struct Builder {
             kBisectionRadiusScale * mean_distance(uint32_t(v.idx()), added.neighbours, mesh);
         for (Mesh::VertexEdgeIter it = mesh.ve_iter(v); it.is_valid(); ++it)
             heap->push({mesh.calc_edge_length(*it), it->idx()});
-        for (Mesh::VertexVertexIter it = mesh.vv_iter(v); it.is_valid(); ++it)
-            for (Mesh::VertexEdgeIter e2 = mesh.ve_iter(*it); e2.is_valid(); ++e2)
-                heap->push({mesh.calc_edge_length(*e2), e2->idx()});
     }
 
     // Thesis Alg. 4.2/4.5: split the longest edge until the point budget is met.
