@@ -136,6 +136,7 @@ int main(int argc, char** argv) {
     RawScene scene;
     std::string error;
     if (!import_scene(o.input, &scene, &error)) die(error);
+    if (!scene.animated()) orient_outward(&scene);  // glTF's winding is fixed by the spec
     assign_normals(o.normals, &scene);
     if (!o.quiet)
         for (const std::string& w : scene.warnings)

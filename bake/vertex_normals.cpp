@@ -1,5 +1,6 @@
 #include "bake/vertex_normals.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -47,6 +48,30 @@ bool parse_normal_mode(const std::string& text, NormalMode* out) {
         *out = NormalMode::automatic;
     else
         return false;
+    return true;
+}
+
+bool orient_outward(RawScene* scene) {
+    RawScene& s = *scene;
+    if (s.triangle_count() == 0) return false;
+    double volume = 0;
+    Vec3 lo = position(s, 0), hi = lo;
+    for (uint32_t v = 0; v < s.vertex_count(); ++v)
+        for (int k = 0; k < 3; ++k) {
+            lo[size_t(k)] = std::min(lo[size_t(k)], position(s, v)[size_t(k)]);
+            hi[size_t(k)] = std::max(hi[size_t(k)], position(s, v)[size_t(k)]);
+        }
+    for (uint32_t t = 0; t < s.triangle_count(); ++t) {
+        const uint32_t* i = &s.indices[size_t(t) * 3];
+        const Vec3 a = position(s, i[0]), n = face_normal(s, t);
+        volume += (a[0] * n[0] + a[1] * n[1] + a[2] * n[2]) / 6.0;
+    }
+    const double box = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+    if (!(volume < -0.01 * box)) return false;
+    for (size_t t = 0; t < s.triangle_count(); ++t)
+        std::swap(s.indices[t * 3 + 1], s.indices[t * 3 + 2]);
+    for (float& n : s.normals) n = -n;
+    s.warnings.push_back("faces pointed inwards (negative volume); triangles flipped");
     return true;
 }
 

@@ -20,6 +20,13 @@ struct NormalConfig {
 // Parses "input", "flat", "smooth" or "auto".
 bool parse_normal_mode(const std::string& text, NormalMode* out);
 
+// Flips every triangle (and normal) of a mesh whose faces point inwards: a closed mesh
+// with a negative signed volume. Scanned OBJ/PLY/STL files use either winding; the stipple
+// renderer needs outward faces (back-facing points are not drawn). Meshes whose signed
+// volume is below 1% of their bounding box's (open surfaces) are left alone. Returns true if
+// it flipped.
+bool orient_outward(RawScene* scene);
+
 // Rewrites scene->normals, duplicating vertices (with their skin data) where one vertex
 // needs several normals. Triangles keep their indices' order and count, so point host
 // triangles are unaffected. Returns the number of vertices added.

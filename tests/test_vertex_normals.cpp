@@ -95,3 +95,22 @@ TEST(VertexNormals, ParsesModes) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(VertexNormals, InsideOutClosedMeshesAreFlippedOpenOnesLeftAlone) {
+    stipple::bake::RawScene s = cube();
+    for (size_t t = 0; t < s.triangle_count(); ++t)
+        std::swap(s.indices[t * 3 + 1], s.indices[t * 3 + 2]);
+    const std::vector<uint32_t> inside_out = s.indices;
+    EXPECT_TRUE(stipple::bake::orient_outward(&s));
+    EXPECT_NE(s.indices, inside_out);
+    EXPECT_EQ(s.indices, cube().indices);             // back to the outward winding
+    EXPECT_FALSE(stipple::bake::orient_outward(&s));  // already outward
+    stipple::bake::RawScene r = roof(20);             // open surface: no volume to judge by
+    const std::vector<uint32_t> before = r.indices;
+    EXPECT_FALSE(stipple::bake::orient_outward(&r));
+    EXPECT_EQ(r.indices, before);
+}
+
+}  // namespace
