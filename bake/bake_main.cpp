@@ -20,7 +20,8 @@ const char* kUsage =
     "  --points N       points in the hierarchy (default 20000, max 20000000)\n"
     "  --seed S         random seed (default 1); same input+options+seed = same bytes\n"
     "  --jitter J       randomize range in [0, 0.75] (default 0.35, thesis §4.4.1)\n"
-    "  --method M       simplify (thesis ch. 4, default) | random (naive baseline)\n"
+    "  --method M       simplify (thesis ch. 4, default) | relax (ch. 5 token relaxation)\n"
+    "                   | random (naive baseline)\n"
     "  --normals M      flat | smooth | auto (split at sharp edges) | input (default auto)\n"
     "  --crease DEG     auto normals: dihedral angle that makes an edge sharp (default 40)\n"
     "  --quiet          no progress or summary\n"
@@ -82,8 +83,10 @@ Options parse(int argc, char** argv) {
                 o.method = stipple::bake::HierarchyMethod::simplify;
             else if (m == "random")
                 o.method = stipple::bake::HierarchyMethod::random;
+            else if (m == "relax")
+                o.method = stipple::bake::HierarchyMethod::relax;
             else
-                die("--method must be simplify or random, got '" + m + "'");
+                die("--method must be simplify, relax or random, got '" + m + "'");
         } else if (a == "--normals") {
             if (!stipple::bake::parse_normal_mode(value(), &o.normals.mode))
                 die("--normals must be flat, smooth, auto or input");

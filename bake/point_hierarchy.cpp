@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "bake/surface_projection.h"
+#include "bake/token_relaxation.h"
 
 namespace stipple::bake {
 
@@ -71,6 +72,10 @@ std::vector<uint32_t> weld(const RawScene& s, double eps, uint32_t* welded_count
 // (The runtime re-scales this radius with its neighbours' distances, Alg. 6.4.)
 const double kBisectionRadiusScale = std::sqrt(2.0 * std::log(2.0));
 
+// §5.2: "appropriately spaced point distributions are obtained after some 5 to 15
+// iterations"; Fig. 5.15 uses six.
+constexpr int kPrimaryRelaxationIterations = 6;
+
 struct Builder {
     const RawScene& scene;
     const HierarchyConfig& config;
@@ -81,6 +86,7 @@ struct Builder {
     std::vector<uint32_t> welded;                // input vertex -> position class
     std::unique_ptr<InputSurface> surface;
     uint64_t rng;
+    bool jitter_off = false;  // ch. 5 refines without randomizing
 
     Builder(const RawScene& s, const HierarchyConfig& c) : scene(s), config(c), rng(c.seed) {
         mesh.add_property(host_face);
@@ -316,7 +322,7 @@ struct Builder {
         const Mesh::VertexHandle v = mesh.add_vertex(projected.position);
         mesh.split_copy(e, v);
         set_surface_point(v, projected);
-        if (config.jitter > 0) {
+        if (config.jitter > 0 && !jitter_off) {
             std::vector<Mesh::HalfedgeHandle> out;
             for (Mesh::VertexOHalfedgeIter o = mesh.voh_iter(v); o.is_valid(); ++o)
                 if (mesh.face_handle(*o).is_valid()) out.push_back(*o);
@@ -339,6 +345,38 @@ struct Builder {
             kBisectionRadiusScale * mean_distance(uint32_t(v.idx()), added.neighbours, mesh);
         for (Mesh::VertexEdgeIter it = mesh.ve_iter(v); it.is_valid(); ++it)
             heap->push({mesh.calc_edge_length(*it), it->idx()});
+    }
+
+    // Ch. 5 needs at least one polygon per point: bisect (without randomization, so every
+    // refined face stays inside its input face) until there are `faces` faces, then hand
+    // every face to the relaxation as a base patch with a random centre (§5.1).
+    std::vector<BasePatch> base_patches(size_t faces) {
+        while (mesh.n_faces() < faces) {
+            const size_t before = mesh.n_faces();
+            subdivide(mesh.n_vertices() + (faces - mesh.n_faces() + 1) / 2);
+            if (mesh.n_faces() == before) break;
+        }
+        std::vector<BasePatch> base(mesh.n_faces());
+        for (Mesh::FaceHandle f : mesh.faces()) {
+            BasePatch& b = base[size_t(f.idx())];
+            Vec3 corner[3];
+            int k = 0;
+            for (Mesh::FaceVertexIter v = mesh.fv_iter(f); v.is_valid() && k < 3; ++v)
+                corner[k++] = mesh.point(*v);
+            b.area = 0.5 * ((corner[1] - corner[0]) % (corner[2] - corner[0])).norm();
+            b.lo = b.hi = corner[0];
+            for (int i = 1; i < 3; ++i) {
+                b.lo.minimize(corner[i]);
+                b.hi.maximize(corner[i]);
+            }
+            double r1 = std::sqrt(uniform()), r2 = uniform();
+            const Vec3 c =
+                corner[0] * (1 - r1) + corner[1] * (r1 * (1 - r2)) + corner[2] * (r1 * r2);
+            b.centre = surface->locate(mesh.property(host_face, f), c);
+            for (Mesh::FaceFaceIter n = mesh.ff_iter(f); n.is_valid() && b.neighbour_count < 3; ++n)
+                b.neighbours[b.neighbour_count++] = uint32_t(n->idx());
+        }
+        return base;
     }
 
     // Thesis Alg. 4.2/4.5: split the longest edge until the point budget is met.
@@ -416,6 +454,23 @@ void random_points(const RawScene& scene, const HierarchyConfig& config, PointHi
     }
 }
 
+// Keeps the first `count` points and drops neighbour references past them.
+void truncate(size_t count, PointHierarchy* p) {
+    if (p->size() <= count) return;
+    PointHierarchy t;
+    t.neighbour_offsets.push_back(0);
+    for (size_t i = 0; i < count; ++i) {
+        t.host_triangle.push_back(p->host_triangle[i]);
+        t.bary_u.push_back(p->bary_u[i]);
+        t.bary_v.push_back(p->bary_v[i]);
+        t.radius.push_back(p->radius[i]);
+        for (uint32_t k = p->neighbour_offsets[i]; k < p->neighbour_offsets[i + 1]; ++k)
+            if (p->neighbours[k] < count) t.neighbours.push_back(p->neighbours[k]);
+        t.neighbour_offsets.push_back(uint32_t(t.neighbours.size()));
+    }
+    *p = std::move(t);
+}
+
 }  // namespace
 
 bool build_point_hierarchy(const RawScene& scene, const HierarchyConfig& config,
@@ -440,6 +495,21 @@ bool build_point_hierarchy(const RawScene& scene, const HierarchyConfig& config,
         return false;
     }
     b.surface = std::make_unique<InputSurface>(scene, b.welded);
+    if (config.method == HierarchyMethod::relax) {
+        b.jitter_off = true;
+        const size_t input_faces = b.mesh.n_faces();
+        RelaxationStats relaxation;
+        relax_hierarchy(*b.surface, b.base_patches(config.point_count), config.seed,
+                        kPrimaryRelaxationIterations, out, &relaxation);
+        truncate(config.point_count, out);
+        if (stats) {
+            *stats = b.stats;
+            stats->simplified_points = uint32_t(std::min<size_t>(input_faces, out->size()));
+            stats->subdivided_points = uint32_t(out->size() - stats->simplified_points);
+        }
+        b.report(1.0f);
+        return true;
+    }
     b.randomize_inputs();
     b.simplify();
     size_t input_points = b.points.size();

@@ -23,6 +23,7 @@ struct PointHierarchy {
 enum class HierarchyMethod {
     simplify,  // thesis ch. 4: randomize + project, simplification and legal subdivision
     random,    // naive baseline: uniformly random surface points in random order
+    relax,     // thesis ch. 5: patch hierarchy + graph token relaxation
 };
 
 struct HierarchyConfig {
