@@ -10,6 +10,7 @@
 #include "bake/scene_import.h"
 #include "bake/vertex_normals.h"
 #include "runtime/asset.h"
+#include "tools/cli_args.h"
 
 namespace {
 
@@ -37,9 +38,10 @@ struct Options {
     bool quiet = false;
 };
 
+stipple::cli::Args* g_args = nullptr;  // for die() outside parse()
+
 [[noreturn]] void die(const std::string& message) {
-    std::fprintf(stderr, "stipple-bake: %s\n", message.c_str());
-    std::exit(1);
+    g_args->die(message);
 }
 
 bool parse_long(const char* s, long lo, long hi, long* out) {
@@ -50,14 +52,11 @@ bool parse_long(const char* s, long lo, long hi, long* out) {
     return true;
 }
 
-Options parse(int argc, char** argv) {
+Options parse(stipple::cli::Args& args) {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        std::string a = argv[i];
-        auto value = [&]() -> const char* {
-            if (i + 1 >= argc) die("option " + a + " needs a value");
-            return argv[++i];
-        };
+    std::string a;
+    while (args.next(&a)) {
+        auto value = [&]() { return args.value(a); };
         if (a == "-h" || a == "--help") {
             std::fputs(kUsage, stdout);
             std::exit(0);
@@ -72,11 +71,7 @@ Options parse(int argc, char** argv) {
             o.seed = std::strtoull(s, &end, 10);
             if (end == s || *end != '\0') die("--seed must be a non-negative integer");
         } else if (a == "--jitter") {
-            const char* v = value();
-            char* end = nullptr;
-            o.jitter = std::strtod(v, &end);
-            if (end == v || *end != '\0' || !(o.jitter >= 0 && o.jitter <= 0.75))
-                die("--jitter must be a number in [0, 0.75]");
+            o.jitter = args.number(a, value(), 0, 0.75);
         } else if (a == "--method") {
             std::string m = value();
             if (m == "simplify")
@@ -133,7 +128,9 @@ int main(int argc, char** argv) {
     using namespace stipple::bake;
     const uint16_t probe = 1;
     if (*reinterpret_cast<const uint8_t*>(&probe) != 1) die("big-endian hosts are not supported");
-    Options o = parse(argc, argv);
+    stipple::cli::Args args{"stipple-bake", argc, argv};
+    g_args = &args;
+    Options o = parse(args);
     auto t0 = std::chrono::steady_clock::now();
 
     RawScene scene;

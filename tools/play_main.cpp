@@ -14,6 +14,7 @@
 #include "platform/headless_context.h"
 #include "runtime/asset.h"
 #include "runtime/frame_pipeline.h"
+#include "tools/cli_args.h"
 #include "tools/image_write.h"
 
 namespace {
@@ -58,30 +59,19 @@ struct Options {
     bool relevance_update = true, dots_out = false, png = true, apng = true, stats = false;
 };
 
+stipple::cli::Args* g_args = nullptr;  // for die() outside parse()
+
 [[noreturn]] void die(const std::string& message) {
-    std::fprintf(stderr, "stipple-play: %s\n", message.c_str());
-    std::exit(1);
+    g_args->die(message);
 }
 
-double parse_double(const std::string& option, const char* s, double lo, double hi) {
-    char* end = nullptr;
-    double v = std::strtod(s, &end);
-    if (end == s || *end != '\0' || !(v >= lo && v <= hi)) {
-        char buf[160];
-        std::snprintf(buf, sizeof(buf), "%s must be a number in [%g, %g], got '%s'", option.c_str(),
-                      lo, hi, s);
-        die(buf);
-    }
-    return v;
-}
-
-Options parse(int argc, char** argv) {
+Options parse(stipple::cli::Args& args) {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        std::string a = argv[i];
-        auto value = [&]() -> const char* {
-            if (i + 1 >= argc) die("option " + a + " needs a value");
-            return argv[++i];
+    std::string a;
+    while (args.next(&a)) {
+        auto value = [&]() { return args.value(a); };
+        auto parse_double = [&](const std::string& option, const char* text, double lo, double hi) {
+            return args.number(option, text, lo, hi);
         };
         if (a == "-h" || a == "--help") {
             std::fputs(kUsage, stdout);
@@ -191,7 +181,9 @@ bool write_dots(const stipple::Pipeline& p, const float* depth, const std::strin
 }  // namespace
 
 int main(int argc, char** argv) {
-    Options o = parse(argc, argv);
+    stipple::cli::Args args{"stipple-play", argc, argv};
+    g_args = &args;
+    Options o = parse(args);
     stipple::Asset asset;
     stipple::LoadStatus st = stipple::load_asset_file(o.asset.c_str(), &asset);
     if (!st.ok()) die(o.asset + ": " + st.message);
