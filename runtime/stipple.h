@@ -50,6 +50,7 @@ typedef struct stipple_player_desc {
     float max_point_size;       /* stipple diameter in pixels; 0: 3 */
     int no_relevance_update;    /* 1: keep rest-pose relevance (thesis Alg. 6.3 only) */
     int no_silhouettes;         /* 1: no silhouette lines */
+    int dual_quaternion_skinning; /* 1: DQS instead of linear blend skinning */
     uint32_t background_rgb;    /* 0xRRGGBB; used only when background_set */
     int background_set;         /* 0: white paper */
     stipple_get_proc_fn get_proc_address; /* required */
@@ -72,6 +73,10 @@ stipple_result stipple_player_create(const stipple_asset* asset, const stipple_p
                                      stipple_player** out);
 /* Poses clip `clip` (-1: rest pose) at `time_seconds` (clamped to the clip) and draws. */
 void stipple_player_draw(stipple_player* player, int clip, float time_seconds);
+/* Layers clip `clip2` at `time2` over `clip` at `time` with weight `weight2` in [0, 1]
+ * (0: only `clip`; ramp it from 0 to 1 for a crossfade) and draws. */
+void stipple_player_draw_blend(stipple_player* player, int clip, float time, int clip2,
+                               float time2, float weight2);
 /* width * height * 4 bytes, bottom row first (GL order). */
 void stipple_player_read_rgba(stipple_player* player, uint8_t* rgba);
 uint32_t stipple_player_points_drawn(const stipple_player* player);

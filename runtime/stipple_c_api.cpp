@@ -112,6 +112,8 @@ stipple_result stipple_player_create(const stipple_asset* asset, const stipple_p
     c.max_point_size = desc->max_point_size > 0 ? desc->max_point_size : 3.0f;
     c.relevance_update = !desc->no_relevance_update;
     c.silhouettes = !desc->no_silhouettes;
+    c.skinning = desc->dual_quaternion_skinning ? stipple::anim::Skinning::dqs
+                                                : stipple::anim::Skinning::lbs;
     if (desc->background_set)
         for (int k = 0; k < 3; ++k)
             c.background[k] = float((desc->background_rgb >> (16 - 8 * k)) & 0xFF) / 255.0f;
@@ -138,6 +140,18 @@ stipple_result stipple_player_create(const stipple_asset* asset, const stipple_p
 
 void stipple_player_draw(stipple_player* p, int clip, float time_seconds) {
     if (p) stipple::pipeline_frame(&p->pipeline, clip, time_seconds, nullptr);
+}
+
+void stipple_player_draw_blend(stipple_player* p, int clip, float time, int clip2, float time2,
+                               float weight2) {
+    if (!p) return;
+    stipple::AnimationState state;
+    state.clip = clip;
+    state.time = time;
+    state.blend_clip = clip2;
+    state.blend_time = time2;
+    state.blend_weight = weight2 < 0 ? 0.0f : (weight2 > 1 ? 1.0f : weight2);
+    stipple::pipeline_frame(&p->pipeline, state, nullptr);
 }
 
 void stipple_player_read_rgba(stipple_player* p, uint8_t* rgba) {

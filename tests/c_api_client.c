@@ -34,3 +34,44 @@ long c_api_render_dark_pixels(const char* asset_path, stipple_get_proc_fn get_pr
     stipple_asset_destroy(asset);
     return dark;
 }
+
+/* Height in rows of the white object drawn with clip 0 blended 50/50 with clip 1 (the
+ * stretch tube's "rest" and "stretch"), on a grey background; -1 on error. */
+long c_api_blend_height(const char* asset_path, stipple_get_proc_fn get_proc, float weight) {
+    stipple_asset* asset = NULL;
+    stipple_player* player = NULL;
+    stipple_player_desc desc;
+    uint8_t* rgba;
+    long top = -1, bottom = -1;
+    int x, y;
+    if (stipple_asset_load_file(asset_path, &asset) != STIPPLE_OK) return -1;
+    memset(&desc, 0, sizeof(desc));
+    desc.width = 200;
+    desc.height = 400;
+    desc.zoom = 0.5f;
+    desc.use_constant_tone = 1;
+    desc.constant_tone = 0.0f;
+    desc.no_silhouettes = 1;
+    desc.dual_quaternion_skinning = 1;
+    desc.background_set = 1;
+    desc.background_rgb = 0x808080;
+    desc.get_proc_address = get_proc;
+    if (stipple_player_create(asset, &desc, &player) != STIPPLE_OK) {
+        stipple_asset_destroy(asset);
+        return -1;
+    }
+    rgba = (uint8_t*)malloc(200 * 400 * 4);
+    stipple_player_draw_blend(player, stipple_asset_find_clip(asset, "rest"), 1.0f,
+                              stipple_asset_find_clip(asset, "stretch"), 1.0f, weight);
+    stipple_player_read_rgba(player, rgba);
+    for (y = 0; y < 400; ++y)
+        for (x = 0; x < 200; ++x)
+            if (rgba[(y * 200 + x) * 4] > 230) {
+                if (top < 0) top = y;
+                bottom = y;
+            }
+    free(rgba);
+    stipple_player_destroy(player);
+    stipple_asset_destroy(asset);
+    return top < 0 ? 0 : bottom - top + 1;
+}

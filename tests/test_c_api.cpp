@@ -8,6 +8,8 @@
 #include "runtime/stipple.h"
 #include "tests/frame_check_util.h"
 
+extern "C" long c_api_blend_height(const char* asset_path, stipple_get_proc_fn get_proc,
+                                   float weight);
 extern "C" long c_api_render_dark_pixels(const char* asset_path, stipple_get_proc_fn get_proc,
                                          float time, uint32_t* points_drawn);
 
@@ -28,6 +30,24 @@ TEST(CApi, RendersAStippledFrameFromC) {
                                          0.5f, &drawn);
     EXPECT_GT(dark, 300) << stipple_last_error();
     EXPECT_GT(drawn, 200u);
+    stipple::platform::destroy_headless_context(&context);
+}
+
+// Blending through the C API (with DQS): the tube's upper bone at scale 1 + weight.
+TEST(CApi, BlendsTwoClips) {
+    std::string asset = ::testing::TempDir() + "c_api_tube.stip";
+    ASSERT_EQ(run(bin("stipple-bake") + " " + source("assets/stretch_tube/stretch_tube.gltf") +
+                  " -o " + asset + " --points 3000 --quiet"),
+              0);
+    stipple::platform::HeadlessContext context;
+    std::string error;
+    ASSERT_TRUE(stipple::platform::create_headless_context({}, &context, &error)) << error;
+    const long rest = c_api_blend_height(asset.c_str(), stipple::platform::proc_loader(context), 0);
+    const long half =
+        c_api_blend_height(asset.c_str(), stipple::platform::proc_loader(context), 0.5f);
+    ASSERT_GT(rest, 50) << stipple_last_error();
+    // Height 0.5 + 1.5 s: s = 1 -> 2, s = 1.5 -> 2.75.
+    EXPECT_NEAR(double(half) / double(rest), 2.75 / 2.0, 0.05);
     stipple::platform::destroy_headless_context(&context);
 }
 
