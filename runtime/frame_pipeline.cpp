@@ -199,7 +199,8 @@ bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const Pipel
         !alloc(&p->vertex_normals, verts * 3) || !alloc(&p->point_positions, points * 3) ||
         !alloc(&p->point_normals, points * 3) || !alloc(&p->rest_radius, points) ||
         !alloc(&p->radius, points) || !alloc(&p->size, points) ||
-        !alloc(&p->radius_scale, points) || !alloc(&p->triangle_front, asset.mesh.triangle_count) ||
+        !alloc(&p->radius_scale, points) || !alloc(&p->draw_positions, points * 3) ||
+        !alloc(&p->draw_sizes, points) || !alloc(&p->triangle_front, asset.mesh.triangle_count) ||
         !alloc(&p->lines, size_t(asset.edges.edge_count) * 6)) {
         std::snprintf(error, error_size, "out of memory for %zu points", points);
         return false;
@@ -225,10 +226,15 @@ bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const Pipel
     rc.vertex_count = asset.mesh.vertex_count;
     rc.max_lines = asset.edges.edge_count;
     rc.line_width = config.line_width;
+    rc.depth_copy = config.depth_readback;
     rc.indices = asset.mesh.indices;
     rc.triangle_count = asset.mesh.triangle_count;
     std::memcpy(rc.background, config.background, sizeof(rc.background));
-    return renderer_init(&p->renderer, gl, rc, error, error_size);
+    if (!renderer_init(&p->renderer, gl, rc, error, error_size)) return false;
+    // Draw the rest pose once now: llvmpipe compiles shaders on first use (15-25 ms), which
+    // belongs to load time, not to the first frame.
+    pipeline_frame(p, AnimationState(), nullptr);
+    return true;
 }
 
 void pipeline_frame(Pipeline* p, int clip, float time, StageTimes* t) {
@@ -254,8 +260,20 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
     if (t) t->relevance += ms_since(&clock);
     size_stipples(a.points.point_count, p->point_positions.get(), p->point_normals.get(), radius,
                   p->size_params, p->size.get());
+    // Only dots with a size go to the GPU: at 100k points a frame draws ~5k, and uploading
+    // and vertex-shading the other 95% cost llvmpipe more than this compaction costs here.
     uint32_t drawn = 0;
-    for (uint32_t i = 0; i < a.points.point_count; ++i) drawn += p->size[i] > 0.0f;
+    const float* size = p->size.get();
+    const float* position = p->point_positions.get();
+    float* draw_size = p->draw_sizes.get();
+    float* draw_position = p->draw_positions.get();
+    for (uint32_t i = 0; i < a.points.point_count; ++i) {
+        draw_position[drawn * 3] = position[i * 3];
+        draw_position[drawn * 3 + 1] = position[i * 3 + 1];
+        draw_position[drawn * 3 + 2] = position[i * 3 + 2];
+        draw_size[drawn] = size[i];
+        drawn += size[i] > 0.0f;
+    }
     p->points_drawn = drawn;
     if (t) t->size += ms_since(&clock);
     p->lines_drawn = 0;
@@ -269,8 +287,8 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
     renderer_draw_mesh(&p->renderer, p->view_projection, p->vertex_positions.get(),
                        a.mesh.vertex_count);
     renderer_draw_lines(&p->renderer, p->view_projection, p->lines.get(), p->lines_drawn);
-    renderer_draw_points(&p->renderer, p->view_projection, p->point_positions.get(), p->size.get(),
-                         a.points.point_count);
+    renderer_draw_points(&p->renderer, p->view_projection, p->draw_positions.get(),
+                         p->draw_sizes.get(), p->points_drawn);
     p->renderer.gl.Finish();
     if (t) t->draw += ms_since(&clock);
 }

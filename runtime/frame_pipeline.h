@@ -28,8 +28,9 @@ struct PipelineConfig {
     float smooth_slope = 2.0f;
     float background[3] = {1.0f, 1.0f, 1.0f};
     anim::Skinning skinning = anim::Skinning::lbs;  // or dual quaternions (no candy wrapper)
-    bool silhouettes = true;  // draw silhouette lines (needs the asset's EDGE section)
-    float line_width = 1.0f;  // silhouette width in pixels
+    bool silhouettes = true;      // draw silhouette lines (needs the asset's EDGE section)
+    float line_width = 1.0f;      // silhouette width in pixels
+    bool depth_readback = false;  // keep the mesh depth for renderer_read_depth (dot lists)
 };
 
 // What pose to draw: one clip, optionally blended with a second (walk -> run crossfades are
@@ -65,12 +66,13 @@ struct Pipeline {
     std::unique_ptr<glm::mat4[]> skin_matrices;                 // joint_count
     std::unique_ptr<float[]> vertex_positions, vertex_normals;  // 3 * vertex_count
     std::unique_ptr<float[]> point_positions, point_normals;    // 3 * point_count
-    std::unique_ptr<float[]> radius_scale;               // point_count, see relevance_scale()
-    std::unique_ptr<float[]> rest_radius, radius, size;  // point_count
-    std::unique_ptr<uint8_t[]> triangle_front;           // triangle_count
-    std::unique_ptr<float[]> lines;                      // 6 * edge_count
-    uint32_t points_drawn = 0;                           // size > 0 in the last frame
-    uint32_t lines_drawn = 0;                            // silhouette lines
+    std::unique_ptr<float[]> radius_scale;                // point_count, see relevance_scale()
+    std::unique_ptr<float[]> draw_positions, draw_sizes;  // the dots with a size, compacted
+    std::unique_ptr<float[]> rest_radius, radius, size;   // point_count
+    std::unique_ptr<uint8_t[]> triangle_front;            // triangle_count
+    std::unique_ptr<float[]> lines;                       // 6 * edge_count
+    uint32_t points_drawn = 0;                            // size > 0 in the last frame
+    uint32_t lines_drawn = 0;                             // silhouette lines
 };
 
 bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const PipelineConfig& config,

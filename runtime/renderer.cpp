@@ -151,9 +151,11 @@ bool renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config, c
     gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
     r->color_rb = renderbuffer(gl, GL_RGBA8, w, h);
     gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, r->color_rb);
-    r->depth_copy_rb = renderbuffer(gl, GL_R32F, w, h);
-    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER,
-                               r->depth_copy_rb);
+    if (config.depth_copy) {
+        r->depth_copy_rb = renderbuffer(gl, GL_R32F, w, h);
+        gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER,
+                                   r->depth_copy_rb);
+    }
     r->depth_rb = renderbuffer(gl, GL_DEPTH_COMPONENT24, w, h);
     gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, r->depth_rb);
     GLenum status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
@@ -214,13 +216,14 @@ void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const flo
     const GlApi& gl = r->gl;
     const RendererConfig& c = r->config;
     gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
-    const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    const GLenum both[2] = {GL_COLOR_ATTACHMENT0,
+                            c.depth_copy ? GLenum(GL_COLOR_ATTACHMENT1) : GLenum(GL_NONE)};
     gl.DrawBuffers(2, both);
     gl.Viewport(0, 0, c.width, c.height);
     const float background[4] = {c.background[0], c.background[1], c.background[2], 1.0f};
     const float far_depth[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     gl.ClearBufferfv(GL_COLOR, 0, background);
-    gl.ClearBufferfv(GL_COLOR, 1, far_depth);
+    if (c.depth_copy) gl.ClearBufferfv(GL_COLOR, 1, far_depth);
     gl.DepthMask(GL_TRUE);  // the points pass leaves depth writes off; glClear obeys the mask
     gl.Clear(GL_DEPTH_BUFFER_BIT);
 
@@ -292,6 +295,7 @@ void renderer_read_color(Renderer* r, uint8_t* rgba) {
 
 void renderer_read_depth(Renderer* r, float* scratch, float* depth) {
     const GlApi& gl = r->gl;
+    if (!r->config.depth_copy) return;
     gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
     gl.ReadBuffer(GL_COLOR_ATTACHMENT1);
     gl.PixelStorei(GL_PACK_ALIGNMENT, 4);

@@ -5,7 +5,6 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
-
 #include <glm/glm.hpp>
 
 #include "runtime/gl_api.h"
@@ -15,10 +14,10 @@ namespace stipple {
 struct RendererConfig {
     int width = 640;
     int height = 480;
-    uint32_t max_points = 0;        // capacity of the point buffers
-    uint32_t vertex_count = 0;      // capacity of the mesh vertex buffer
-    uint32_t max_lines = 0;         // capacity of the silhouette line buffer
-    float line_width = 1.0f;        // silhouette width in pixels (clamped to the GL range)
+    uint32_t max_points = 0;            // capacity of the point buffers
+    uint32_t vertex_count = 0;          // capacity of the mesh vertex buffer
+    uint32_t max_lines = 0;             // capacity of the silhouette line buffer
+    float line_width = 1.0f;            // silhouette width in pixels (clamped to the GL range)
     const uint32_t* indices = nullptr;  // triangle list, uploaded once
     uint32_t triangle_count = 0;
     float background[3] = {1.0f, 1.0f, 1.0f};
@@ -27,6 +26,9 @@ struct RendererConfig {
     // Clip-space depth offset of the mesh pass, as a fraction of w (NDC units): keeps dots
     // lying on the surface in front of it (§3.2 "slightly behind the particles").
     float depth_bias = 0.002f;
+    // Keep a float copy of the mesh pass's depth for renderer_read_depth (dot visibility
+    // lists). Off by default: it costs a 4-byte-per-pixel clear and write every frame.
+    bool depth_copy = false;
 };
 
 struct Renderer {
@@ -57,7 +59,8 @@ void renderer_draw_lines(Renderer* r, const glm::mat4& view_projection, const fl
 
 // Reads back the frame as RGBA8, bottom row first (width * height * 4 bytes).
 void renderer_read_color(Renderer* r, uint8_t* rgba);
-// Reads back the mesh pass's window depth (1 = background), bottom row first. `scratch`
+// Reads back the mesh pass's window depth (1 = background), bottom row first; needs
+// RendererConfig::depth_copy. `scratch`
 // must hold width * height * 4 floats; the result is written to depth (width * height).
 void renderer_read_depth(Renderer* r, float* scratch, float* depth);
 

@@ -224,6 +224,7 @@ int main(int argc, char** argv) {
     pc.constant_tone = float(o.tone);
     pc.max_point_size = float(o.point_size);
     pc.silhouettes = o.silhouettes;
+    pc.depth_readback = o.dots_out;
     pc.skinning = o.dqs ? stipple::anim::Skinning::dqs : stipple::anim::Skinning::lbs;
     pc.line_width = float(o.line_width);
     std::memcpy(pc.background, o.background, sizeof(pc.background));
