@@ -105,21 +105,37 @@ Options parse(stipple::cli::Args& args) {
     return o;
 }
 
+// Progress bar on stderr: silent for the first second (most bakes end sooner), then one
+// line rewritten in place with the phase, a bar, the phase's percentage and the time.
 struct Progress {
     std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
     bool quiet = false;
+    bool shown = false;
+    std::string phase;
     int last = -1;
+
+    double seconds() const {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    void finish() {
+        if (shown) std::fputc('\n', stderr);
+        shown = false;
+    }
 };
 
-void on_progress(float fraction, void* user) {
+void on_progress(const char* phase, float fraction, void* user) {
     Progress* p = static_cast<Progress*>(user);
-    double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - p->start).count();
-    int percent = int(fraction * 100);
-    if (p->quiet || percent == p->last || seconds < 1.0) return;
+    const double seconds = p->seconds();
+    const int percent = fraction <= 0 ? 0 : (fraction >= 1 ? 100 : int(fraction * 100));
+    if (p->quiet || seconds < 1.0 || (p->phase == phase && percent == p->last)) return;
+    p->phase = phase;
     p->last = percent;
-    std::fprintf(stderr, "\rbuilding point hierarchy %3d%%", percent);
-    if (percent == 100) std::fputc('\n', stderr);
+    p->shown = true;
+    char bar[25];
+    for (int i = 0; i < 24; ++i) bar[i] = i < percent * 24 / 100 ? '#' : '.';
+    bar[24] = '\0';
+    std::fprintf(stderr, "\r%-16s [%s] %3d%%  %6.1f s", phase, bar, percent, seconds);
+    std::fflush(stderr);
 }
 
 }  // namespace
@@ -133,17 +149,18 @@ int main(int argc, char** argv) {
     Options o = parse(args);
     auto t0 = std::chrono::steady_clock::now();
 
+    Progress progress;
+    progress.quiet = o.quiet;
     RawScene scene;
     std::string error;
     if (!import_scene(o.input, &scene, &error)) die(error);
+    on_progress("import", 1, &progress);
     if (!scene.animated()) orient_outward(&scene);  // glTF's winding is fixed by the spec
     assign_normals(o.normals, &scene);
     if (!o.quiet)
         for (const std::string& w : scene.warnings)
             std::fprintf(stderr, "warning: %s\n", w.c_str());
 
-    Progress progress;
-    progress.quiet = o.quiet;
     HierarchyConfig config;
     config.point_count = uint32_t(o.points);
     config.seed = o.seed;
@@ -153,18 +170,30 @@ int main(int argc, char** argv) {
     config.progress_user = &progress;
     PointHierarchy points;
     HierarchyStats stats;
-    if (!build_point_hierarchy(scene, config, &points, &stats, &error)) die(o.input + ": " + error);
-    if (points.size() < size_t(o.points) && !o.quiet)
+    if (!build_point_hierarchy(scene, config, &points, &stats, &error)) {
+        progress.finish();
+        die(o.input + ": " + error);
+    }
+    if (points.size() < size_t(o.points) && !o.quiet) {
+        progress.finish();
         std::fprintf(stderr, "warning: only %zu points could be built\n", points.size());
+    }
 
+    on_progress("encode", 0, &progress);
     std::vector<uint8_t> bytes = encode_asset(scene, points);
+    on_progress("verify", 0, &progress);
     // Read the asset back with the runtime's validating loader before writing it, so a
     // bake never leaves an asset the runtime would refuse.
     stipple::Asset check;
     stipple::LoadStatus loaded = stipple::load_asset_memory(bytes.data(), bytes.size(), &check);
-    if (!loaded.ok())
+    if (!loaded.ok()) {
+        progress.finish();
         die(std::string("internal error: baked asset does not load: ") + loaded.message);
+    }
+    on_progress("write", 0, &progress);
     if (!write_asset(o.output, bytes, &error)) die(error);
+    on_progress("write", 1, &progress);
+    progress.finish();
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!o.quiet) {
         // Point data only: the coded point stream.
@@ -172,11 +201,16 @@ int main(int argc, char** argv) {
         std::printf(
             "{\"input\": \"%s\", \"output\": \"%s\", \"vertices\": %zu, \"triangles\": %zu, "
             "\"joints\": %zu, \"clips\": %zu, \"points\": %zu, \"input_points\": %u, "
-            "\"subdivided_points\": %u, \"neighbours_per_point\": %.2f, \"bytes\": %zu, "
+            "\"subdivided_points\": %u, \"discarded_randomizations\": %u, \"legal_splits\": %u, "
+            "\"slivers\": [%u, %u], "
+            "\"levels\": %u, \"relax_iterations\": %u, \"neighbours_per_point\": %.2f, "
+            "\"bytes\": %zu, "
             "\"bytes_per_point\": %.2f, \"seconds\": %.3f}\n",
             o.input.c_str(), o.output.c_str(), scene.vertex_count(), scene.triangle_count(),
             scene.joint_nodes.size(), scene.clips.size(), points.size(), stats.simplified_points,
-            stats.subdivided_points, double(points.neighbours.size()) / double(points.size()),
+            stats.subdivided_points, stats.discarded_randomizations, stats.legal_splits,
+            stats.slivers_before_subdivision, stats.slivers_after_subdivision,
+            stats.levels, stats.relax_iterations, double(points.neighbours.size()) / double(points.size()),
             bytes.size(), double(point_bytes) / double(points.size()), seconds);
     }
     return 0;

@@ -9,6 +9,8 @@
 #include <queue>
 #include <tuple>
 
+#include "bake/bake_random.h"
+#include "bake/base_mesh.h"
 #include "bake/surface_projection.h"
 #include "bake/token_relaxation.h"
 
@@ -35,13 +37,6 @@ struct PointRecord {
     double radius = 0;
     std::vector<uint32_t> neighbours;
 };
-
-uint64_t splitmix64(uint64_t* state) {
-    uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
 
 Vec3 input_position(const RawScene& s, uint32_t vertex) {
     const float* p = &s.positions[size_t(vertex) * 3];
@@ -72,9 +67,21 @@ std::vector<uint32_t> weld(const RawScene& s, double eps, uint32_t* welded_count
 // (The runtime re-scales this radius with its neighbours' distances, Alg. 6.4.)
 const double kBisectionRadiusScale = std::sqrt(2.0 * std::log(2.0));
 
-// §5.2: "appropriately spaced point distributions are obtained after some 5 to 15
-// iterations"; Fig. 5.15 uses six.
-constexpr int kPrimaryRelaxationIterations = 6;
+// Randomization may not create angles below this (see move_is_valid).
+constexpr double kSliverDegrees = 10;
+const double kSliverCosine = std::cos(kSliverDegrees * M_PI / 180);
+
+// Cosine of the smallest angle of triangle (p, a, b); 1 if degenerate.
+double smallest_angle_cosine(const Vec3& p, const Vec3& a, const Vec3& b) {
+    const Vec3 c[3] = {p, a, b};
+    double worst = -1;
+    for (int i = 0; i < 3; ++i) {
+        const Vec3 u = c[(i + 1) % 3] - c[i], w = c[(i + 2) % 3] - c[i];
+        const double den = u.norm() * w.norm();
+        worst = std::max(worst, den > 0 ? (u | w) / den : 1.0);
+    }
+    return worst;
+}
 
 struct Builder {
     const RawScene& scene;
@@ -85,14 +92,15 @@ struct Builder {
     std::vector<PointRecord> points;             // indexed like mesh vertices
     std::vector<uint32_t> welded;                // input vertex -> position class
     std::unique_ptr<InputSurface> surface;
-    uint64_t rng;
+    Rng rng;
     bool jitter_off = false;  // ch. 5 refines without randomizing
+    const char* phase = "subdivide";
 
-    Builder(const RawScene& s, const HierarchyConfig& c) : scene(s), config(c), rng(c.seed) {
+    Builder(const RawScene& s, const HierarchyConfig& c) : scene(s), config(c), rng{c.seed} {
         mesh.add_property(host_face);
     }
 
-    double uniform() { return double(splitmix64(&rng) >> 11) * (1.0 / 9007199254740992.0); }
+    double uniform() { return rng.uniform(); }
 
     // A random point of the triangle (p, a, b) within `jitter` of p: s, t uniform over the
     // corner triangle s + t <= 1, scaled (§4.4.1 "a small region between the input vertex and
@@ -108,15 +116,20 @@ struct Builder {
     }
 
     // True if moving vertex v to q flips none of its faces (a fold, §4.4.2 "invalid
-    // projection"): each face normal keeps its side.
+    // projection": each face normal keeps its side) and makes none of them a sliver (an
+    // angle under kSliverDegrees that was not there before: §4.4.1 bounds the randomize
+    // region because "we would generate thin polygons, which we want to avoid").
     bool move_is_valid(Mesh::VertexHandle v, const Vec3& q) const {
+        const Vec3 p = mesh.point(v);
         for (Mesh::ConstVertexOHalfedgeIter h = mesh.cvoh_iter(v); h.is_valid(); ++h) {
             if (!mesh.face_handle(*h).is_valid()) continue;
             const Vec3 a = mesh.point(mesh.to_vertex_handle(*h));
             const Vec3 b = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(*h)));
-            const Vec3 before = (a - mesh.point(v)) % (b - mesh.point(v));
+            const Vec3 before = (a - p) % (b - p);
             const Vec3 after = (a - q) % (b - q);
             if ((before | after) <= 0) return false;
+            const double thin = smallest_angle_cosine(q, a, b);
+            if (thin > kSliverCosine && thin > smallest_angle_cosine(p, a, b)) return false;
         }
         return true;
     }
@@ -129,30 +142,41 @@ struct Builder {
         r.v = sp.v;
     }
 
-    // Thesis Alg. 4.4: randomize every input vertex inside a random incident face. The
-    // moved vertex stays in that face, so it is on the input surface without projection.
+    // Thesis Alg. 4.4: every input vertex moves inside a random incident face of the
+    // randomized mesh Mr (whose earlier vertices have already moved, so the face need not
+    // lie on the input surface), then is projected onto the input mesh Mi along the summed
+    // normals of its neighbours (§4.4.2); a move that folds a face around it is discarded.
     void randomize_inputs() {
         if (config.jitter <= 0) return;
+        std::vector<Mesh::HalfedgeHandle> out;
+        std::vector<uint32_t> seeds;
+        size_t done = 0;
         for (Mesh::VertexHandle v : mesh.vertices()) {
-            std::vector<Mesh::HalfedgeHandle> out;
-            for (Mesh::VertexOHalfedgeIter h = mesh.voh_iter(v); h.is_valid(); ++h)
+            if (++done % 8192 == 0) report("randomize", float(done) / float(mesh.n_vertices()));
+            out.clear();
+            seeds.assign(1, points[size_t(v.idx())].host);
+            Vec3 direction = surface->normal(seeds[0]);
+            for (Mesh::VertexOHalfedgeIter h = mesh.voh_iter(v); h.is_valid(); ++h) {
                 if (mesh.face_handle(*h).is_valid()) out.push_back(*h);
+                const uint32_t host = points[size_t(mesh.to_vertex_handle(*h).idx())].host;
+                seeds.push_back(host);
+                direction += surface->normal(host);
+            }
             if (out.empty()) continue;
-            Mesh::HalfedgeHandle h = out[size_t(splitmix64(&rng) % out.size())];
+            Mesh::HalfedgeHandle h = out[rng.below(out.size())];
             const Vec3 a = mesh.point(mesh.to_vertex_handle(h));
             const Vec3 b = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
             const Vec3 q = jittered(mesh.point(v), a, b);
-            if (!move_is_valid(v, q)) {
+            const SurfacePoint sp = surface->project(q, direction, seeds.data(), int(seeds.size()));
+            if (!move_is_valid(v, sp.position)) {
                 ++stats.discarded_randomizations;
                 continue;
             }
-            set_surface_point(v, surface->locate(mesh.property(host_face, mesh.face_handle(h)), q));
+            set_surface_point(v, sp);
         }
     }
 
-    void report(float fraction) {
-        if (config.progress) config.progress(fraction, config.progress_user);
-    }
+    void report(const char* name, float fraction) const { config.report(name, fraction); }
 
     Mesh::VertexHandle new_vertex(const Vec3& p, uint32_t triangle, int corner) {
         PointRecord r;
@@ -243,7 +267,7 @@ struct Builder {
                 heap.pop();
                 Mesh::EdgeHandle e(idx);
                 if (m.status(e).deleted() || length(e) != len) continue;  // stale entry
-                Mesh::HalfedgeHandle h = m.halfedge_handle(e, int(splitmix64(&rng) & 1));
+                Mesh::HalfedgeHandle h = m.halfedge_handle(e, int(rng.next() & 1));
                 if (!m.is_collapse_ok(h)) h = m.opposite_halfedge_handle(h);
                 if (!m.is_collapse_ok(h)) continue;
                 Mesh::VertexHandle removed = m.from_vertex_handle(h), kept = m.to_vertex_handle(h);
@@ -254,7 +278,8 @@ struct Builder {
                 --remaining;
                 for (Mesh::VertexEdgeIter it = m.ve_iter(kept); it.is_valid(); ++it)
                     heap.push({length(*it), it->idx()});
-                if (remaining % 4096 == 0) report(0.5f * float(total - remaining) / float(total));
+                if (remaining % 4096 == 0)
+                    report("simplify", float(total - remaining) / float(total));
             }
             if (remaining == before) break;
         }
@@ -327,7 +352,7 @@ struct Builder {
             for (Mesh::VertexOHalfedgeIter o = mesh.voh_iter(v); o.is_valid(); ++o)
                 if (mesh.face_handle(*o).is_valid()) out.push_back(*o);
             if (!out.empty()) {
-                Mesh::HalfedgeHandle o = out[size_t(splitmix64(&rng) % out.size())];
+                Mesh::HalfedgeHandle o = out[rng.below(out.size())];
                 const Vec3 q =
                     jittered(projected.position, mesh.point(mesh.to_vertex_handle(o)),
                              mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(o))));
@@ -348,39 +373,49 @@ struct Builder {
     }
 
     // Ch. 5 needs at least one polygon per point: bisect (without randomization, so every
-    // refined face stays inside its input face) until there are `faces` faces, then hand
-    // every face to the relaxation as a base patch with a random centre (§5.1).
-    std::vector<BasePatch> base_patches(size_t faces) {
+    // refined face stays inside its input face) until there are `faces` faces; the result
+    // as plain arrays (bake/base_mesh.h).
+    BaseMesh base_mesh(size_t faces) {
+        phase = "refine";
         while (mesh.n_faces() < faces) {
             const size_t before = mesh.n_faces();
             subdivide(mesh.n_vertices() + (faces - mesh.n_faces() + 1) / 2);
             if (mesh.n_faces() == before) break;
         }
-        std::vector<BasePatch> base(mesh.n_faces());
+        BaseMesh base;
+        base.positions.reserve(mesh.n_vertices());
+        for (Mesh::VertexHandle v : mesh.vertices()) base.positions.push_back(mesh.point(v));
+        base.faces.reserve(mesh.n_faces() * 3);
+        base.across.reserve(mesh.n_faces() * 3);
+        base.host.reserve(mesh.n_faces());
         for (Mesh::FaceHandle f : mesh.faces()) {
-            BasePatch& b = base[size_t(f.idx())];
-            Vec3 corner[3];
-            int k = 0;
-            for (Mesh::FaceVertexIter v = mesh.fv_iter(f); v.is_valid() && k < 3; ++v)
-                corner[k++] = mesh.point(*v);
-            b.area = 0.5 * ((corner[1] - corner[0]) % (corner[2] - corner[0])).norm();
-            b.lo = b.hi = corner[0];
-            for (int i = 1; i < 3; ++i) {
-                b.lo.minimize(corner[i]);
-                b.hi.maximize(corner[i]);
+            Mesh::HalfedgeHandle h = mesh.halfedge_handle(f);
+            for (int k = 0; k < 3; ++k) {  // edge k = (from(h), to(h)) = (v[k], v[k + 1])
+                base.faces.push_back(uint32_t(mesh.from_vertex_handle(h).idx()));
+                const Mesh::FaceHandle g = mesh.opposite_face_handle(h);
+                base.across.push_back(g.is_valid() ? uint32_t(g.idx()) : kNoFace);
+                h = mesh.next_halfedge_handle(h);
             }
-            double r1 = std::sqrt(uniform()), r2 = uniform();
-            const Vec3 c =
-                corner[0] * (1 - r1) + corner[1] * (r1 * (1 - r2)) + corner[2] * (r1 * r2);
-            b.centre = surface->locate(mesh.property(host_face, f), c);
-            for (Mesh::FaceFaceIter n = mesh.ff_iter(f); n.is_valid() && b.neighbour_count < 3; ++n)
-                b.neighbours[b.neighbour_count++] = uint32_t(n->idx());
+            base.host.push_back(mesh.property(host_face, f));
         }
+        base.build_vertex_faces();
         return base;
     }
 
     // Thesis Alg. 4.2/4.5: split the longest edge until the point budget is met.
+    // Faces with an angle under kSliverDegrees (slivers), for the stats.
+    uint32_t sliver_faces() const {
+        uint32_t thin = 0;
+        for (Mesh::FaceHandle f : mesh.faces()) {
+            Mesh::ConstFaceVertexIter v = mesh.cfv_iter(f);
+            const Vec3 p = mesh.point(*v), a = mesh.point(*++v), b = mesh.point(*++v);
+            thin += smallest_angle_cosine(p, a, b) > kSliverCosine;
+        }
+        return thin;
+    }
+
     void subdivide(size_t target) {
+        if (!jitter_off) stats.slivers_before_subdivision = sliver_faces();
         Heap heap;
         for (Mesh::EdgeHandle e : mesh.edges()) heap.push({mesh.calc_edge_length(e), e.idx()});
         const size_t start = mesh.n_vertices();
@@ -394,9 +429,10 @@ struct Builder {
             const size_t done = mesh.n_vertices() - start;
             if (done - reported >= 4096) {
                 reported = done;
-                report(0.5f + 0.5f * float(done) / float(target - start));
+                report(phase, float(done) / float(target - start));
             }
         }
+        if (!jitter_off) stats.slivers_after_subdivision = sliver_faces();
     }
 };
 
@@ -424,34 +460,29 @@ void order_and_emit(const std::vector<PointRecord>& points, size_t count, PointH
     }
 }
 
-// The naive baseline: `count` points uniformly distributed by area over the input triangles,
-// in random order, without neighbours; radius[i] = sqrt(area / (i + 1)), the spacing a
-// prefix of i + 1 points would have if it were even (kRegionPerRadiusSquared = 1).
-void random_points(const RawScene& scene, const HierarchyConfig& config, PointHierarchy* out) {
-    std::vector<double> cumulative(scene.triangle_count());
-    double area = 0;
-    for (uint32_t t = 0; t < scene.triangle_count(); ++t) {
-        const uint32_t* i = &scene.indices[size_t(t) * 3];
-        Vec3 a = input_position(scene, i[0]), b = input_position(scene, i[1]),
-             c = input_position(scene, i[2]);
-        area += 0.5 * ((b - a) % (c - a)).norm();
-        cumulative[t] = area;
+// The runtime gives a point of radius r a region of influence r^2 (kRegionPerRadiusSquared
+// = 1, runtime/stipple_size.h), which is right when the n-th point's r^2 is the area per
+// point of an n-point prefix, area / n. Mean one-ring distances miss that by a factor set
+// by the mesh (a regular triangulation of edge L has sqrt(3)/2 L^2 per vertex: 0.87; the
+// bunny and horse measure 0.82-0.99 along the hierarchy). One factor per hierarchy, the
+// geometric mean of area / (n r_n^2) with every octave of prefix sizes weighted alike,
+// makes the tone right on average over the levels while keeping each radius's local
+// meaning and the order (bunny, 100k points: 0.96-1.03 from 300 to 64k points, tone 0.30-0.31
+// for a target of 0.3, instead of 0.91-0.97 and 0.34-0.35). Prefixes under 256 points,
+// whose radii scatter most, and the last tenth, a generation of splits cut short by the
+// point budget, are left out of the fit.
+void calibrate_radii(double area, PointHierarchy* p) {
+    double sum = 0, weights = 0;
+    for (size_t i = 256; i < p->size() - p->size() / 10; ++i) {
+        const double r = p->radius[i];
+        if (!(r > 0)) continue;
+        const double w = 1.0 / double(i + 1);
+        sum += w * std::log(area / (double(i + 1) * r * r));
+        weights += w;
     }
-    uint64_t rng = config.seed;
-    auto uniform = [&]() { return double(splitmix64(&rng) >> 11) * (1.0 / 9007199254740992.0); };
-    *out = PointHierarchy();
-    out->neighbour_offsets.assign(size_t(config.point_count) + 1, 0);
-    for (uint32_t i = 0; i < config.point_count; ++i) {
-        const double pick = uniform() * area;
-        uint32_t t = uint32_t(std::upper_bound(cumulative.begin(), cumulative.end(), pick) -
-                              cumulative.begin());
-        t = std::min<uint32_t>(t, uint32_t(scene.triangle_count() - 1));
-        double r1 = std::sqrt(uniform()), r2 = uniform();  // uniform over the triangle
-        out->host_triangle.push_back(t);
-        out->bary_u.push_back(float(1 - r1));
-        out->bary_v.push_back(float(r1 * (1 - r2)));
-        out->radius.push_back(float(std::sqrt(area / double(i + 1))));
-    }
+    if (weights == 0) return;
+    const float scale = float(std::exp(0.5 * sum / weights));
+    for (float& r : p->radius) r *= scale;
 }
 
 // Keeps the first `count` points and drops neighbour references past them.
@@ -483,11 +514,16 @@ bool build_point_hierarchy(const RawScene& scene, const HierarchyConfig& config,
         *error = "point count must be positive";
         return false;
     }
-    if (config.method == HierarchyMethod::random) {
-        random_points(scene, config, out);
-        if (stats) *stats = HierarchyStats();
-        return true;
-    }
+    for (float x : scene.positions)
+        if (!std::isfinite(x)) {
+            *error = "mesh has a vertex position that is not finite";
+            return false;
+        }
+    for (uint32_t i : scene.indices)
+        if (i >= scene.vertex_count()) {
+            *error = "mesh has a triangle index out of range";
+            return false;
+        }
     Builder b(scene, config);
     b.build_graph();
     if (b.mesh.n_faces() == 0) {
@@ -495,29 +531,34 @@ bool build_point_hierarchy(const RawScene& scene, const HierarchyConfig& config,
         return false;
     }
     b.surface = std::make_unique<InputSurface>(scene, b.welded);
-    if (config.method == HierarchyMethod::relax) {
+    if (config.method != HierarchyMethod::simplify) {
         b.jitter_off = true;
         const size_t input_faces = b.mesh.n_faces();
-        RelaxationStats relaxation;
-        relax_hierarchy(*b.surface, b.base_patches(config.point_count), config.seed,
-                        kPrimaryRelaxationIterations, out, &relaxation);
+        const BaseMesh base = b.base_mesh(config.point_count);
+        b.mesh.clear();  // the arrays above are all ch. 5 needs
+        b.mesh.garbage_collection();
+        std::vector<PointRecord>().swap(b.points);
+        HierarchyStats st = b.stats;
+        if (config.method == HierarchyMethod::relax)
+            relax_hierarchy(*b.surface, base, config, out, &st);
+        else
+            random_hierarchy(*b.surface, base, config, out);
         truncate(config.point_count, out);
-        if (stats) {
-            *stats = b.stats;
-            stats->simplified_points = uint32_t(std::min<size_t>(input_faces, out->size()));
-            stats->subdivided_points = uint32_t(out->size() - stats->simplified_points);
-        }
-        b.report(1.0f);
+        st.simplified_points = uint32_t(std::min<size_t>(input_faces, out->size()));
+        st.subdivided_points = uint32_t(out->size() - st.simplified_points);
+        if (stats) *stats = st;
         return true;
     }
     b.randomize_inputs();
     b.simplify();
     size_t input_points = b.points.size();
     b.subdivide(config.point_count);
-    b.report(1.0f);
     b.stats.simplified_points = uint32_t(input_points);
     b.stats.subdivided_points = uint32_t(b.points.size() - input_points);
+    b.report("order", 0);
     order_and_emit(b.points, config.point_count, out);
+    calibrate_radii(b.surface->area(), out);
+    b.report("order", 1);
     if (stats) *stats = b.stats;
     return true;
 }

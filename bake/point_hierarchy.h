@@ -22,9 +22,23 @@ struct PointHierarchy {
 
 enum class HierarchyMethod {
     simplify,  // thesis ch. 4: randomize + project, simplification and legal subdivision
-    random,    // naive baseline: uniformly random surface points in random order
-    relax,     // thesis ch. 5: patch hierarchy + graph token relaxation
+    random,    // naive baseline: one random point per polygon, in random order (Fig. 5.1)
+    relax,     // thesis ch. 5: primary relaxation, patch hierarchy, graph token relaxation
 };
+
+// Token relaxation parameters (thesis ch. 5); the defaults are the thesis's.
+struct RelaxConfig {
+    int primary_iterations = 6;   // §5.6.2: "a constant number of six primary relaxations"
+    double primary_step = 0.5;    // fraction of the mean repulsive force moved per iteration
+    int fusion_neighbours = 4;    // §5.4: the smallest patch is fused with four neighbours
+    int token_depth = 3;          // §5.5.1: tokens start on descendants three levels below
+    int max_iterations = 50;      // §5.6.2: at most 50 iterations per level...
+    int patience = 15;            // ...or 15 without a decrease of the total tension
+    double repulsion_k = 1.0;     // §5.5.3: repulsionRadius = k sqrt(a / n), k in [1, 2]
+};
+
+// Progress of a bake phase ("simplify", "subdivide", "relax", ...) in [0, 1].
+using ProgressFn = void (*)(const char* phase, float fraction, void* user);
 
 struct HierarchyConfig {
     HierarchyMethod method = HierarchyMethod::simplify;
@@ -34,9 +48,14 @@ struct HierarchyConfig {
     // up to this fraction of the way towards the other corners of a random incident face.
     float jitter = 0.35f;
     float weld_epsilon = 1e-6f;    // relative to the bounding-box diagonal
-    // Called now and then with progress in [0, 1]; may be null.
-    void (*progress)(float fraction, void* user) = nullptr;
+    RelaxConfig relax;
+    // Called now and then with the current phase and its progress; may be null.
+    ProgressFn progress = nullptr;
     void* progress_user = nullptr;
+
+    void report(const char* phase, float fraction) const {
+        if (progress) progress(phase, fraction, progress_user);
+    }
 };
 
 struct HierarchyStats {
@@ -45,8 +64,12 @@ struct HierarchyStats {
     uint32_t split_vertices = 0;     // vertices duplicated to keep the mesh manifold
     uint32_t simplified_points = 0;  // points from input vertices (Alg. 4.1)
     uint32_t subdivided_points = 0;  // points from edge splits (Alg. 4.2)
-    uint32_t discarded_randomizations = 0;  // moves undone because they folded the mesh
+    uint32_t discarded_randomizations = 0;  // moves undone: they folded a face or made a sliver
     uint32_t legal_splits = 0;       // extra splits made by refineLocal (Alg. 4.3)
+    uint32_t slivers_before_subdivision = 0;  // faces with an angle < 10 deg, randomized input
+    uint32_t slivers_after_subdivision = 0;   // the same after subdivision
+    uint32_t levels = 0;             // relax: levels of the patch hierarchy
+    uint32_t relax_iterations = 0;   // relax: token relaxation iterations, all levels
 };
 
 bool build_point_hierarchy(const RawScene& scene, const HierarchyConfig& config,

@@ -51,6 +51,7 @@ InputSurface::InputSurface(const RawScene& scene, const std::vector<uint32_t>& w
         const Vec3d n = (corner(t, 1) - corner(t, 0)) % (corner(t, 2) - corner(t, 0));
         const double len = n.norm();
         normals_[t] = len > 0 ? n / len : Vec3d(0, 0, 0);
+        area_ += 0.5 * len;
     }
     near_offsets_.assign(tris + 1, 0);
     std::vector<uint32_t> list;

@@ -27,6 +27,8 @@ class InputSurface {
 
     Vec3d corner(uint32_t triangle, int k) const;
     const Vec3d& normal(uint32_t triangle) const { return normals_[triangle]; }
+    // Total area of the input triangles.
+    double area() const { return area_; }
 
     // Barycentrics of a point of triangle t (clamped into the triangle).
     SurfacePoint locate(uint32_t triangle, const Vec3d& p) const;
@@ -40,6 +42,7 @@ class InputSurface {
   private:
     const RawScene& scene_;
     std::vector<Vec3d> normals_;          // unit normal per triangle (0 if degenerate)
+    double area_ = 0;
     std::vector<uint32_t> near_offsets_;  // CSR: triangles sharing a vertex with t
     std::vector<uint32_t> near_;
     mutable std::vector<uint32_t> candidates_;

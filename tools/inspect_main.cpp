@@ -12,17 +12,21 @@
 #include <string>
 #include <vector>
 
+#include "bake/point_grid.h"
 #include "runtime/asset.h"
 #include "runtime/point_placement.h"
 
 namespace {
 
 const char* kUsage =
-    "usage: stipple-inspect ASSET.stip [--quality]\n"
-    "  --quality   nearest-neighbour spacing statistics of the 1k/4k/16k/64k-point levels\n";
+    "usage: stipple-inspect ASSET.stip [--quality] [--prefixes N,N,...]\n"
+    "  --quality       nearest-neighbour spacing of the 1k/4k/16k/64k-point prefixes (levels)\n"
+    "                  and the tone calibration (area per point / radius^2) there\n"
+    "  --prefixes L    other prefix sizes for --quality (comma-separated)\n";
 
 struct Spacing {
     double mean = 0, cv = 0, min_over_mean = 0;
+    double density_cv = 0;  // of the point count within 3 even spacings of each point
 };
 
 double surface_area(const stipple::MeshView& m) {
@@ -43,45 +47,48 @@ double surface_area(const stipple::MeshView& m) {
     return area;
 }
 
-// Nearest-neighbour distances among the first n points, with a uniform grid of cells about
-// twice the even spacing (sorted cell keys, 27-cell search, widened when a cell is empty).
-Spacing nearest_neighbour_spacing(const float* p, uint32_t n, double area) {
-    const double spacing = std::sqrt(area / n), cell = 2 * spacing;
-    float lo[3] = {1e30f, 1e30f, 1e30f};
-    for (uint32_t i = 0; i < n; ++i)
-        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[i * 3 + k]);
-    auto coord = [&](uint32_t i, int k) { return int64_t((p[i * 3 + k] - lo[k]) / cell); };
-    auto key = [](int64_t x, int64_t y, int64_t z) {
-        return (uint64_t(x) << 42) | (uint64_t(y) << 21) | uint64_t(z);
-    };
-    std::vector<std::pair<uint64_t, uint32_t>> keyed(n);
-    for (uint32_t i = 0; i < n; ++i) keyed[i] = {key(coord(i, 0), coord(i, 1), coord(i, 2)), i};
-    std::sort(keyed.begin(), keyed.end());
+// Nearest-neighbour distances among the first n points (a grid of cells twice the even
+// spacing; the search widens until the nearest point found is nearer than the ring).
+Spacing nearest_neighbour_spacing(const std::vector<double>& xyz, uint32_t n, double area) {
+    const double spacing = std::sqrt(area / n);
+    stipple::bake::PointGrid grid;
+    grid.build(xyz.data(), n, 2 * spacing);
     std::vector<double> d(n);
     for (uint32_t i = 0; i < n; ++i) {
         double best = 1e300;
-        for (int64_t ring = 1; best == 1e300 && ring < 64; ring *= 2) {
-            for (int64_t dx = -ring; dx <= ring; ++dx)
-                for (int64_t dy = -ring; dy <= ring; ++dy)
-                    for (int64_t dz = -ring; dz <= ring; ++dz) {
-                        int64_t x = coord(i, 0) + dx, y = coord(i, 1) + dy, z = coord(i, 2) + dz;
-                        if (x < 0 || y < 0 || z < 0) continue;
-                        uint64_t k = key(x, y, z);
-                        auto it = std::lower_bound(keyed.begin(), keyed.end(),
-                                                   std::make_pair(k, uint32_t(0)));
-                        for (; it != keyed.end() && it->first == k; ++it) {
-                            if (it->second == i) continue;
-                            double s = 0;
-                            for (int c = 0; c < 3; ++c) {
-                                double e = double(p[it->second * 3 + c]) - p[i * 3 + c];
-                                s += e * e;
-                            }
-                            best = std::min(best, s);
-                        }
-                    }
+        for (int ring = 1; ring <= 64; ring *= 2) {
+            grid.visit(&xyz[size_t(i) * 3], ring, [&](uint32_t j) {
+                if (j == i) return;
+                double s = 0;
+                for (int k = 0; k < 3; ++k) {
+                    const double e = xyz[size_t(j) * 3 + size_t(k)] - xyz[size_t(i) * 3 + size_t(k)];
+                    s += e * e;
+                }
+                best = std::min(best, s);
+            });
+            if (std::sqrt(best) <= ring * grid.cell()) break;
         }
         d[i] = std::sqrt(best) / spacing;
     }
+    // Large-scale evenness, which nearest-neighbour distances do not see (a region twice as
+    // dense can be locally regular): the points within 3 even spacings of each point, about
+    // 28 on a flat even surface; Poisson points give a CV near 0.2.
+    const double reach2 = 9 * spacing * spacing;
+    double csum = 0, csum2 = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        double count = 0;
+        grid.visit(&xyz[size_t(i) * 3], 2, [&](uint32_t j) {
+            double s2 = 0;
+            for (int k = 0; k < 3; ++k) {
+                const double e = xyz[size_t(j) * 3 + size_t(k)] - xyz[size_t(i) * 3 + size_t(k)];
+                s2 += e * e;
+            }
+            count += s2 <= reach2;
+        });
+        csum += count;
+        csum2 += count * count;
+    }
+    const double cmean = csum / n;
     Spacing s;
     double sum = 0, sum2 = 0, lowest = 1e300;
     for (double x : d) {
@@ -92,7 +99,32 @@ Spacing nearest_neighbour_spacing(const float* p, uint32_t n, double area) {
     s.mean = sum / n;
     s.cv = std::sqrt(std::max(sum2 / n - s.mean * s.mean, 0.0)) / s.mean;
     s.min_over_mean = lowest / s.mean;
+    s.density_cv = std::sqrt(std::max(csum2 / n - cmean * cmean, 0.0)) / cmean;
     return s;
+}
+
+// Tone calibration (runtime/stipple_size.h): the area per point of an n-point prefix over
+// the squared radius of its last points, mean over ranks [0.9 n, n); 1.0 is what the
+// runtime's kRegionPerRadiusSquared assumes.
+double region_per_radius2(const stipple::PointsView& p, uint32_t n, double area) {
+    double sum = 0;
+    uint32_t count = 0;
+    for (uint32_t i = uint32_t(0.9 * n); i < n; ++i, ++count)
+        sum += area / double(i + 1) / (double(p.radius[i]) * p.radius[i]);
+    return count ? sum / count : 0;
+}
+
+std::vector<uint32_t> parse_prefixes(const char* text) {
+    std::vector<uint32_t> out;
+    for (const char* at = text; *at;) {
+        char* end = nullptr;
+        const long v = std::strtol(at, &end, 10);
+        if (end == at || v <= 1 || v > 100000000) return {};
+        out.push_back(uint32_t(v));
+        at = *end == ',' ? end + 1 : end;
+        if (*end && *end != ',') return {};
+    }
+    return out;
 }
 
 }  // namespace
@@ -100,12 +132,19 @@ Spacing nearest_neighbour_spacing(const float* p, uint32_t n, double area) {
 int main(int argc, char** argv) {
     const char* path = nullptr;
     bool quality = false;
+    std::vector<uint32_t> prefixes = {1000, 4000, 16000, 64000};
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help")) {
             std::fputs(kUsage, stdout);
             return 0;
         } else if (!std::strcmp(argv[i], "--quality")) {
             quality = true;
+        } else if (!std::strcmp(argv[i], "--prefixes")) {
+            prefixes = i + 1 < argc ? parse_prefixes(argv[++i]) : std::vector<uint32_t>();
+            if (prefixes.empty()) {
+                std::fprintf(stderr, "stipple-inspect: --prefixes needs sizes > 1, e.g. 1000,4000\n");
+                return 1;
+            }
         } else if (argv[i][0] == '-') {
             std::fprintf(stderr, "stipple-inspect: unknown option '%s' (see --help)\n", argv[i]);
             return 1;
@@ -150,16 +189,18 @@ int main(int argc, char** argv) {
         std::vector<float> pos(size_t(p.point_count) * 3), nrm(size_t(p.point_count) * 3);
         stipple::place_points(p, a.mesh.indices, a.mesh.positions, a.mesh.normals, pos.data(),
                               nrm.data());
+        const std::vector<double> xyz(pos.begin(), pos.end());
         const double area = surface_area(a.mesh);
         std::printf(", \"surface_area\": %g, \"quality\": [", area);
         bool first = true;
-        for (uint32_t n : {1000u, 4000u, 16000u, 64000u}) {
-            if (n > p.point_count) break;
-            Spacing s = nearest_neighbour_spacing(pos.data(), n, area);
+        for (uint32_t n : prefixes) {
+            if (n > p.point_count) continue;
+            Spacing s = nearest_neighbour_spacing(xyz, n, area);
             std::printf(
                 "%s{\"points\": %u, \"nn_mean\": %.4f, \"nn_cv\": %.4f, "
-                "\"nn_min_over_mean\": %.4f}",
-                first ? "" : ", ", n, s.mean, s.cv, s.min_over_mean);
+                "\"nn_min_over_mean\": %.4f, \"density_cv\": %.4f, \"region_per_r2\": %.3f}",
+                first ? "" : ", ", n, s.mean, s.cv, s.min_over_mean, s.density_cv,
+                region_per_radius2(p, n, area));
             first = false;
         }
         std::printf("]");
