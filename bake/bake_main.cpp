@@ -22,10 +22,10 @@ const char* kUsage =
     "  --seed S         random seed (default 1); same input+options+seed = same bytes\n"
     "  --jitter J       randomize range in [0, 0.75] (default 0.35, thesis §4.4.1)\n"
     "  --method M       simplify (thesis ch. 4, default) | relax (ch. 5 token relaxation)\n"
-    "                   | random (naive baseline)\n"
+    "                   | random (naive baseline: one random point per polygon)\n"
     "  --normals M      flat | smooth | auto (split at sharp edges) | input (default auto)\n"
     "  --crease DEG     auto normals: dihedral angle that makes an edge sharp (default 40)\n"
-    "  --quiet          no progress or summary\n"
+    "  --quiet          no progress bar (shown on stderr for bakes over a second) or summary\n"
     "  -h, --help       this text\n";
 
 struct Options {

@@ -127,12 +127,14 @@ PatchHierarchy fuse_patches(const BaseMesh& base, int group, Rng* rng) {
     PatchHierarchy h;
     Boxes boxes = base_boxes(base);
     h.levels.push_back(base_level(base));
+    h.levels.back().area = boxes.area;
     while (h.levels.back().size() >= kTopPatches) {
         PatchLevel up = fuse_level(&h.levels.back(), &boxes, group, rng);
         if (up.size() == h.levels.back().size()) {  // nothing fused: isolated pieces
             std::fill(h.levels.back().parent.begin(), h.levels.back().parent.end(), kNoPatch);
             break;
         }
+        up.area = boxes.area;
         h.levels.push_back(std::move(up));
     }
     return h;

@@ -18,6 +18,7 @@ struct PatchLevel {
     std::vector<uint32_t> child_offsets, children;        // indices in the level below
     std::vector<uint32_t> neighbour_offsets, neighbours;  // patches of this level sharing a border
     std::vector<uint32_t> leaf;                           // base polygon holding the centre
+    std::vector<double> area;                             // surface area covered
     uint32_t size() const { return uint32_t(leaf.size()); }
 };
 
