@@ -28,13 +28,13 @@ using simd::f4;
 
 struct Mesh {
     size_t vertex_count;
-    const float* palette;     // LBS: 16 floats per joint, column-major
-    const DqsJoint* dq;       // DQS
-    size_t joint_count;       // palette entries
+    const float* palette;  // LBS: 16 floats per joint, column-major
+    const DqsJoint* dq;    // DQS
+    size_t joint_count;    // palette entries
     const uint16_t* joints;
     const float* weights;
     const float* in_p;
-    const float* in_n;        // nullptr: no normals
+    const float* in_n;  // nullptr: no normals
     float* out_p;
     float* out_n;
 };
@@ -58,7 +58,8 @@ void lbs_vertex(const Mesh& m, size_t v) {
     const float* p = m.in_p + 3 * v;
     float pos[3];
     for (int r = 0; r < 3; ++r) {
-        pos[r] = blended[r] * p[0] + blended[4 + r] * p[1] + blended[8 + r] * p[2] + blended[12 + r];
+        pos[r] =
+            blended[r] * p[0] + blended[4 + r] * p[1] + blended[8 + r] * p[2] + blended[12 + r];
     }
     std::memcpy(m.out_p + 3 * v, pos, sizeof(pos));
     if (m.in_n == nullptr) return;
@@ -159,6 +160,17 @@ inline int block_influences(const float* weights, size_t v) {
     return mask >= 8 ? 4 : mask >= 4 ? 3 : mask >= 2 ? 2 : 1;
 }
 
+// Adds influence K (weight lane K times joint matrix K) to the blended matrix columns.
+template <int K>
+inline void add_influence(const Mesh& m, const uint16_t* jv, f4 w, f4& c0, f4& c1, f4& c2, f4& c3) {
+    const float* mk = m.palette + 16 * joint_index(jv[K], m.joint_count);
+    const f4 wk = simd::lane<K>(w);
+    c0 = simd::madd(simd::load(mk), wk, c0);
+    c1 = simd::madd(simd::load(mk + 4), wk, c1);
+    c2 = simd::madd(simd::load(mk + 8), wk, c2);
+    c3 = simd::madd(simd::load(mk + 12), wk, c3);
+}
+
 // LBS of one vertex: the 4 columns of sum_k w_k M_k, applied to p (and n).
 template <int N, bool kNormals>
 inline void lbs_one(const Mesh& m, size_t v, f4 px, f4 py, f4 pz, f4 nx, f4 ny, f4 nz, f4* pos,
@@ -171,30 +183,9 @@ inline void lbs_one(const Mesh& m, size_t v, f4 px, f4 py, f4 pz, f4 nx, f4 ny, 
     f4 c1 = simd::mul(simd::load(m0 + 4), w0);
     f4 c2 = simd::mul(simd::load(m0 + 8), w0);
     f4 c3 = simd::mul(simd::load(m0 + 12), w0);
-    if (N > 1) {
-        const float* mk = m.palette + 16 * joint_index(jv[1], m.joint_count);
-        const f4 wk = simd::lane<1>(w);
-        c0 = simd::madd(simd::load(mk), wk, c0);
-        c1 = simd::madd(simd::load(mk + 4), wk, c1);
-        c2 = simd::madd(simd::load(mk + 8), wk, c2);
-        c3 = simd::madd(simd::load(mk + 12), wk, c3);
-    }
-    if (N > 2) {
-        const float* mk = m.palette + 16 * joint_index(jv[2], m.joint_count);
-        const f4 wk = simd::lane<2>(w);
-        c0 = simd::madd(simd::load(mk), wk, c0);
-        c1 = simd::madd(simd::load(mk + 4), wk, c1);
-        c2 = simd::madd(simd::load(mk + 8), wk, c2);
-        c3 = simd::madd(simd::load(mk + 12), wk, c3);
-    }
-    if (N > 3) {
-        const float* mk = m.palette + 16 * joint_index(jv[3], m.joint_count);
-        const f4 wk = simd::lane<3>(w);
-        c0 = simd::madd(simd::load(mk), wk, c0);
-        c1 = simd::madd(simd::load(mk + 4), wk, c1);
-        c2 = simd::madd(simd::load(mk + 8), wk, c2);
-        c3 = simd::madd(simd::load(mk + 12), wk, c3);
-    }
+    if (N > 1) add_influence<1>(m, jv, w, c0, c1, c2, c3);
+    if (N > 2) add_influence<2>(m, jv, w, c0, c1, c2, c3);
+    if (N > 3) add_influence<3>(m, jv, w, c0, c1, c2, c3);
     *pos = simd::madd(c0, px, simd::madd(c1, py, simd::madd(c2, pz, c3)));
     if (kNormals) *nor = simd::madd(c0, nx, simd::madd(c1, ny, simd::mul(c2, nz)));
 }
@@ -217,14 +208,14 @@ void lbs_block(const Mesh& m, size_t v) {
     f4 nor[4] = {simd::zero(), simd::zero(), simd::zero(), simd::zero()};
     // Packed x0 y0 z0 x1 | y1 z1 x2 y2 | z2 x3 y3 z3: each coordinate splat from its lane.
     using simd::lane;
-    lbs_one<N, kNormals>(m, v + 0, lane<0>(pa), lane<1>(pa), lane<2>(pa), lane<0>(na),
-                         lane<1>(na), lane<2>(na), &pos[0], &nor[0]);
-    lbs_one<N, kNormals>(m, v + 1, lane<3>(pa), lane<0>(pb), lane<1>(pb), lane<3>(na),
-                         lane<0>(nb), lane<1>(nb), &pos[1], &nor[1]);
-    lbs_one<N, kNormals>(m, v + 2, lane<2>(pb), lane<3>(pb), lane<0>(pc), lane<2>(nb),
-                         lane<3>(nb), lane<0>(nc), &pos[2], &nor[2]);
-    lbs_one<N, kNormals>(m, v + 3, lane<1>(pc), lane<2>(pc), lane<3>(pc), lane<1>(nc),
-                         lane<2>(nc), lane<3>(nc), &pos[3], &nor[3]);
+    lbs_one<N, kNormals>(m, v + 0, lane<0>(pa), lane<1>(pa), lane<2>(pa), lane<0>(na), lane<1>(na),
+                         lane<2>(na), &pos[0], &nor[0]);
+    lbs_one<N, kNormals>(m, v + 1, lane<3>(pa), lane<0>(pb), lane<1>(pb), lane<3>(na), lane<0>(nb),
+                         lane<1>(nb), &pos[1], &nor[1]);
+    lbs_one<N, kNormals>(m, v + 2, lane<2>(pb), lane<3>(pb), lane<0>(pc), lane<2>(nb), lane<3>(nb),
+                         lane<0>(nc), &pos[2], &nor[2]);
+    lbs_one<N, kNormals>(m, v + 3, lane<1>(pc), lane<2>(pc), lane<3>(pc), lane<1>(nc), lane<2>(nc),
+                         lane<3>(nc), &pos[3], &nor[3]);
     f4 a, b, c;
     simd::pack_xyz(pos[0], pos[1], pos[2], pos[3], a, b, c);
     float* op = m.out_p + 3 * v;
@@ -236,7 +227,8 @@ void lbs_block(const Mesh& m, size_t v) {
         f4 x = nor[0], y = nor[1], z = nor[2], w = nor[3];
         simd::transpose(x, y, z, w);
         const f4 len2 = simd::madd(x, x, simd::madd(y, y, simd::mul(z, z)));
-        const f4 inv = simd::div(simd::splat(1.0f), simd::sqrt(simd::max(len2, simd::splat(1e-30f))));
+        const f4 inv =
+            simd::div(simd::splat(1.0f), simd::sqrt(simd::max(len2, simd::splat(1e-30f))));
         simd::soa_to_aos3(simd::mul(x, inv), simd::mul(y, inv), simd::mul(z, inv), a, b, c);
         float* on = m.out_n + 3 * v;
         simd::store(on, a);
@@ -320,7 +312,8 @@ void dqs_block(const Mesh& m, size_t v) {
         } else {
             // Join the first influence's hemisphere (Kavan et al. 2007 §4): flip the weight's
             // sign where dot(pivot, q) < 0.
-            const f4 dot = simd::madd(ux, rx, simd::madd(uy, ry, simd::madd(uz, rz, simd::mul(uw, rw))));
+            const f4 dot =
+                simd::madd(ux, rx, simd::madd(uy, ry, simd::madd(uz, rz, simd::mul(uw, rw))));
             wk = simd::flip_sign(wk, dot);
         }
         qx = simd::madd(wk, rx, qx);
@@ -334,14 +327,22 @@ void dqs_block(const Mesh& m, size_t v) {
     }
     const f4 len2 = simd::madd(qx, qx, simd::madd(qy, qy, simd::madd(qz, qz, simd::mul(qw, qw))));
     const f4 inv = simd::div(simd::splat(1.0f), simd::sqrt(simd::max(len2, simd::splat(1e-30f))));
-    qx = simd::mul(qx, inv), qy = simd::mul(qy, inv), qz = simd::mul(qz, inv), qw = simd::mul(qw, inv);
-    dx = simd::mul(dx, inv), dy = simd::mul(dy, inv), dz = simd::mul(dz, inv), dw = simd::mul(dw, inv);
+    qx = simd::mul(qx, inv), qy = simd::mul(qy, inv), qz = simd::mul(qz, inv),
+    qw = simd::mul(qw, inv);
+    dx = simd::mul(dx, inv), dy = simd::mul(dy, inv), dz = simd::mul(dz, inv),
+    dw = simd::mul(dw, inv);
 
     const f4 two = simd::splat(2.0f);
     // Translation: 2 (qw dv - dw qv + qv x dv).
-    const f4 tx = simd::mul(two, simd::sub(simd::madd(qw, dx, simd::sub(simd::mul(qy, dz), simd::mul(qz, dy))), simd::mul(dw, qx)));
-    const f4 ty = simd::mul(two, simd::sub(simd::madd(qw, dy, simd::sub(simd::mul(qz, dx), simd::mul(qx, dz))), simd::mul(dw, qy)));
-    const f4 tz = simd::mul(two, simd::sub(simd::madd(qw, dz, simd::sub(simd::mul(qx, dy), simd::mul(qy, dx))), simd::mul(dw, qz)));
+    const f4 tx = simd::mul(
+        two, simd::sub(simd::madd(qw, dx, simd::sub(simd::mul(qy, dz), simd::mul(qz, dy))),
+                       simd::mul(dw, qx)));
+    const f4 ty = simd::mul(
+        two, simd::sub(simd::madd(qw, dy, simd::sub(simd::mul(qz, dx), simd::mul(qx, dz))),
+                       simd::mul(dw, qy)));
+    const f4 tz = simd::mul(
+        two, simd::sub(simd::madd(qw, dz, simd::sub(simd::mul(qx, dy), simd::mul(qy, dx))),
+                       simd::mul(dw, qz)));
     // Rotation: v + 2 qv x (qv x v + qw v).
     auto rotate4 = [&](f4 vx, f4 vy, f4 vz, f4& ox, f4& oy, f4& oz) {
         const f4 cx = simd::madd(qw, vx, simd::sub(simd::mul(qy, vz), simd::mul(qz, vy)));
@@ -362,7 +363,8 @@ void dqs_block(const Mesh& m, size_t v) {
     if (kNormals) {
         rotate4(nx, ny, nz, ox, oy, oz);
         const f4 nl2 = simd::madd(ox, ox, simd::madd(oy, oy, simd::mul(oz, oz)));
-        const f4 ninv = simd::div(simd::splat(1.0f), simd::sqrt(simd::max(nl2, simd::splat(1e-30f))));
+        const f4 ninv =
+            simd::div(simd::splat(1.0f), simd::sqrt(simd::max(nl2, simd::splat(1e-30f))));
         simd::soa_to_aos3(simd::mul(ox, ninv), simd::mul(oy, ninv), simd::mul(oz, ninv), a, b, c);
         float* on = m.out_n + 3 * v;
         simd::store(on, a);

@@ -138,6 +138,22 @@ GLuint dynamic_buffer(const GlApi& gl, GLuint location, GLint components, size_t
     return b;
 }
 
+// State shared by the passes that lay ink over the mesh pass: colour attachment only,
+// depth-tested against the (biased) mesh without writing depth, no blending.
+void begin_ink_pass(Renderer* r, GLuint program, GLint vp, GLint ink,
+                    const glm::mat4& view_projection) {
+    const GlApi& gl = r->gl;
+    const GLenum first[1] = {GL_COLOR_ATTACHMENT0};
+    gl.DrawBuffers(1, first);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LEQUAL);
+    gl.DepthMask(GL_FALSE);
+    gl.Disable(GL_BLEND);
+    gl.UseProgram(program);
+    gl.UniformMatrix4fv(vp, 1, GL_FALSE, &view_projection[0][0]);
+    gl.Uniform4f(ink, r->config.ink[0], r->config.ink[1], r->config.ink[2], 1.0f);
+}
+
 }  // namespace
 
 bool renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config, char* error,
@@ -243,15 +259,9 @@ void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const flo
 void renderer_draw_points(Renderer* r, const glm::mat4& view_projection, const float* positions,
                           const float* sizes, uint32_t point_count) {
     const GlApi& gl = r->gl;
-    const GLenum first[1] = {GL_COLOR_ATTACHMENT0};
-    gl.DrawBuffers(1, first);
-    gl.DepthFunc(GL_LEQUAL);
-    gl.DepthMask(GL_FALSE);
-    gl.Enable(GL_BLEND);
+    begin_ink_pass(r, r->point_program, r->point_vp, r->point_ink, view_projection);
+    gl.Enable(GL_BLEND);  // antialiased dot edges
     gl.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    gl.UseProgram(r->point_program);
-    gl.UniformMatrix4fv(r->point_vp, 1, GL_FALSE, &view_projection[0][0]);
-    gl.Uniform4f(r->point_ink, r->config.ink[0], r->config.ink[1], r->config.ink[2], 1.0f);
     gl.BindVertexArray(r->point_vao);
     gl.BindBuffer(GL_ARRAY_BUFFER, r->point_pos_vbo);
     gl.BufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(point_count) * 12), positions);
@@ -265,19 +275,11 @@ void renderer_draw_lines(Renderer* r, const glm::mat4& view_projection, const fl
                          uint32_t line_count) {
     const GlApi& gl = r->gl;
     if (line_count == 0) return;
-    const GLenum first[1] = {GL_COLOR_ATTACHMENT0};
-    gl.DrawBuffers(1, first);
-    gl.Enable(GL_DEPTH_TEST);
-    gl.DepthFunc(GL_LEQUAL);
-    gl.DepthMask(GL_FALSE);
-    gl.Disable(GL_BLEND);
     float range[2] = {1.0f, 1.0f};
     gl.GetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, range);
     float width = r->config.line_width;
     gl.LineWidth(width < range[0] ? range[0] : (width > range[1] ? range[1] : width));
-    gl.UseProgram(r->line_program);
-    gl.UniformMatrix4fv(r->line_vp, 1, GL_FALSE, &view_projection[0][0]);
-    gl.Uniform4f(r->line_ink, r->config.ink[0], r->config.ink[1], r->config.ink[2], 1.0f);
+    begin_ink_pass(r, r->line_program, r->line_vp, r->line_ink, view_projection);
     gl.BindVertexArray(r->line_vao);
     gl.BindBuffer(GL_ARRAY_BUFFER, r->line_vbo);
     gl.BufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(line_count) * 24), lines);
