@@ -7,6 +7,7 @@
 #include <map>
 
 #include "bake/point_codec_encode.h"
+#include "bake/scene_bounds.h"
 #include "bake/silhouette_edges.h"
 #include "runtime/asset_format.h"
 
@@ -178,6 +179,33 @@ std::vector<uint8_t> edges_section(const RawScene& s) {
     return b.v;
 }
 
+// SIDE section: the double-sided triangles as runs (one per glTF primitive, typically).
+std::vector<uint8_t> sides_section(const RawScene& s) {
+    std::vector<uint32_t> runs;
+    for (size_t t = 0; t < s.double_sided.size(); ++t) {
+        if (!s.double_sided[t]) continue;
+        if (!runs.empty() && runs[runs.size() - 2] + runs.back() == t)
+            ++runs.back();
+        else
+            runs.insert(runs.end(), {uint32_t(t), 1u});
+    }
+    Bytes b;
+    b.u32(uint32_t(runs.size() / 2));
+    b.put(runs);
+    return b.v;
+}
+
+// BNDS section: up axis, rest-pose box, one box per clip.
+std::vector<uint8_t> bounds_section(const RawScene& s) {
+    SceneBounds bounds = compute_scene_bounds(s);
+    Bytes b;
+    b.u32(s.up_axis);
+    b.u32(uint32_t(bounds.clips.size() / 6));
+    b.put(bounds.rest, 6);
+    b.put(bounds.clips);
+    return b.v;
+}
+
 }  // namespace
 
 std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points) {
@@ -196,6 +224,10 @@ std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& p
     sections.push_back(
         {format::kTagPointStream, point_stream_section(points, uint32_t(scene.triangle_count()))});
     sections.push_back({format::kTagEdges, edges_section(scene)});
+    sections.push_back({format::kTagBounds, bounds_section(scene)});
+    if (std::find(scene.double_sided.begin(), scene.double_sided.end(), 1) !=
+        scene.double_sided.end())
+        sections.push_back({format::kTagSides, sides_section(scene)});
 
     std::vector<format::SectionEntry> table(sections.size());
     uint64_t offset = sizeof(format::FileHeader) + table.size() * sizeof(format::SectionEntry);

@@ -8,8 +8,10 @@
 #include "bake/asset_writer.h"
 #include "bake/point_hierarchy.h"
 #include "bake/scene_import.h"
+#include "bake/scene_orientation.h"
 #include "bake/vertex_normals.h"
 #include "runtime/asset.h"
+#include "runtime/asset_format.h"
 #include "tools/cli_args.h"
 
 namespace {
@@ -20,11 +22,16 @@ const char* kUsage =
     "  -o, --output F   asset to write\n"
     "  --points N       points in the hierarchy (default 20000, max 20000000)\n"
     "  --seed S         random seed (default 1); same input+options+seed = same bytes\n"
-    "  --jitter J       randomize range in [0, 0.75] (default 0.35, thesis §4.4.1)\n"
-    "  --method M       simplify (thesis ch. 4, default) | relax (ch. 5 token relaxation)\n"
+    "  --jitter J       simplify: randomize range in [0, 0.75] (default 0.35, thesis §4.4.1)\n"
+    "  --method M       eliminate (default: progressive sample elimination, even on any mesh)\n"
+    "                   | simplify (thesis ch. 4) | relax (ch. 5 token relaxation)\n"
     "                   | random (naive baseline: one random point per polygon)\n"
     "  --normals M      flat | smooth | auto (split at sharp edges) | input (default auto)\n"
     "  --crease DEG     auto normals: dihedral angle that makes an edge sharp (default 40)\n"
+    "  --double-sided M auto (glTF material.doubleSided; OBJ/PLY/STL single-sided) | on | off:\n"
+    "                   points on double-sided triangles draw from both sides (default auto)\n"
+    "  --up A           y | z: the input's up axis; z turns a Z-up mesh upright (+Z becomes\n"
+    "                   +Y). Default y (glTF is Y-up by its spec; pass z for Z-up PLY/STL)\n"
     "  --quiet          no progress bar (shown on stderr for bakes over a second) or summary\n"
     "  -h, --help       this text\n";
 
@@ -34,8 +41,10 @@ struct Options {
     unsigned long long seed = 1;
     stipple::bake::NormalConfig normals;
     double jitter = 0.35;
-    stipple::bake::HierarchyMethod method = stipple::bake::HierarchyMethod::simplify;
+    stipple::bake::HierarchyMethod method = stipple::bake::HierarchyMethod::eliminate;
     bool quiet = false;
+    enum class Sides { automatic, on, off } double_sided = Sides::automatic;
+    uint32_t up_axis = stipple::format::kUpY;
 };
 
 stipple::cli::Args* g_args = nullptr;  // for die() outside parse()
@@ -80,8 +89,10 @@ Options parse(stipple::cli::Args& args) {
                 o.method = stipple::bake::HierarchyMethod::random;
             else if (m == "relax")
                 o.method = stipple::bake::HierarchyMethod::relax;
+            else if (m == "eliminate")
+                o.method = stipple::bake::HierarchyMethod::eliminate;
             else
-                die("--method must be simplify, relax or random, got '" + m + "'");
+                die("--method must be eliminate, simplify, relax or random, got '" + m + "'");
         } else if (a == "--normals") {
             if (!stipple::bake::parse_normal_mode(value(), &o.normals.mode))
                 die("--normals must be flat, smooth, auto or input");
@@ -90,6 +101,20 @@ Options parse(stipple::cli::Args& args) {
             if (!parse_long(value(), 0, 180, &degrees))
                 die("--crease must be an integer in [0, 180]");
             o.normals.crease_degrees = float(degrees);
+        } else if (a == "--double-sided") {
+            std::string m = value();
+            if (m == "auto")
+                o.double_sided = Options::Sides::automatic;
+            else if (m == "on")
+                o.double_sided = Options::Sides::on;
+            else if (m == "off")
+                o.double_sided = Options::Sides::off;
+            else
+                die("--double-sided must be auto, on or off, got '" + m + "'");
+        } else if (a == "--up") {
+            std::string m = value();
+            if (!stipple::bake::parse_up_axis(m, &o.up_axis))
+                die("--up must be y or z, got '" + m + "'");
         } else if (a == "--quiet") {
             o.quiet = true;
         } else if (!a.empty() && a[0] == '-') {
@@ -155,6 +180,9 @@ int main(int argc, char** argv) {
     std::string error;
     if (!import_scene(o.input, &scene, &error)) die(error);
     on_progress("import", 1, &progress);
+    apply_up_axis(o.up_axis, &scene);
+    if (o.double_sided == Options::Sides::on) scene.double_sided.assign(scene.triangle_count(), 1);
+    if (o.double_sided == Options::Sides::off) scene.double_sided.clear();
     if (!scene.animated()) orient_outward(&scene);  // glTF's winding is fixed by the spec
     assign_normals(o.normals, &scene);
     if (!o.quiet)
@@ -204,14 +232,15 @@ int main(int argc, char** argv) {
             "\"subdivided_points\": %u, \"discarded_randomizations\": %u, \"legal_splits\": %u, "
             "\"slivers\": [%u, %u], "
             "\"levels\": %u, \"relax_iterations\": %u, \"neighbours_per_point\": %.2f, "
-            "\"bytes\": %zu, "
+            "\"bytes\": %zu, \"up\": \"%s\", \"double_sided_triangles\": %u, "
             "\"bytes_per_point\": %.2f, \"seconds\": %.3f}\n",
             o.input.c_str(), o.output.c_str(), scene.vertex_count(), scene.triangle_count(),
             scene.joint_nodes.size(), scene.clips.size(), points.size(), stats.simplified_points,
             stats.subdivided_points, stats.discarded_randomizations, stats.legal_splits,
             stats.slivers_before_subdivision, stats.slivers_after_subdivision,
             stats.levels, stats.relax_iterations, double(points.neighbours.size()) / double(points.size()),
-            bytes.size(), double(point_bytes) / double(points.size()), seconds);
+            bytes.size(), o.up_axis == stipple::format::kUpZ ? "z" : "y",
+            check.sides.triangle_count, double(point_bytes) / double(points.size()), seconds);
     }
     return 0;
 }

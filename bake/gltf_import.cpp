@@ -1393,6 +1393,14 @@ bool import_model(const Model& model, RawScene* scene, std::string* err) {
                                    " on skinned node " + str(gi) +
                                    " has no JOINTS_0/WEIGHTS_0; attached rigidly to the node");
             }
+            // §3.9.5 (material.doubleSided): back faces are lit and drawn too. The
+            // default material (no material index) is single-sided.
+            const int material = model.meshes[mesh_index].primitives[p].material;
+            const bool double_sided = material >= 0 &&
+                                      size_t(material) < model.materials.size() &&
+                                      model.materials[size_t(material)].doubleSided;
+            scene->double_sided.insert(scene->double_sided.end(), prim.indices.size() / 3,
+                                       uint8_t(double_sided));
             const size_t base = scene->vertex_count();
             const size_t count = prim.positions.size() / 3;
             const MorphSlots& node_slots = slots[oi];
@@ -1497,6 +1505,9 @@ bool import_model(const Model& model, RawScene* scene, std::string* err) {
         *err = "no triangle primitives found";
         return false;
     }
+    if (std::find(scene->double_sided.begin(), scene->double_sided.end(), 1) ==
+        scene->double_sided.end())
+        scene->double_sided.clear();  // no double-sided material: nothing to record
     if (animated) {
         scene->joint_nodes = std::move(joint_nodes);
         scene->inverse_bind = std::move(inverse_bind);

@@ -31,4 +31,9 @@ struct LevelOrder {
 // Points whose normals face away (the other side of a thin sheet) are never neighbours.
 LevelOrder order_levels(const LevelPoints& points, double area);
 
+// The same relevant neighbours for points already in their final order (`order` of the
+// result is the identity): each point of a level chooses among the points of its level and
+// the coarser ones (bake/sample_elimination.h, whose levels are the halving stages).
+LevelOrder relevant_neighbours(const LevelPoints& points, double area);
+
 }  // namespace stipple::bake

@@ -41,6 +41,10 @@ class PointGrid {
     }
 
     double cell() const { return cell_; }
+    // The points in the order visit() reports them cell by cell (sorted by cell, then index).
+    const std::vector<uint32_t>& order() const { return order_; }
+    // Cell coordinate of x along axis k (0, 1, 2): points of one cell are visited alike.
+    int64_t cell_of(double x, int k) const { return coord(x, k); }
 
     // Calls f(index) for every point in the cells within `ring` cells of q's cell.
     template <class F>

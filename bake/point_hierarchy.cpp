@@ -10,8 +10,9 @@
 #include <tuple>
 
 #include "bake/bake_random.h"
-#include "bake/radius_calibration.h"
 #include "bake/base_mesh.h"
+#include "bake/radius_calibration.h"
+#include "bake/sample_elimination.h"
 #include "bake/surface_projection.h"
 #include "bake/token_relaxation.h"
 
@@ -116,6 +117,29 @@ struct Builder {
         return p + (a - p) * (s * j) + (b - p) * (t * j);
     }
 
+    // A random move of boundary vertex v along the boundary: up to `jitter` of the way to
+    // one of its two boundary neighbours. §4.4.1's move into a random incident face would
+    // pull it off the boundary, and the randomized mesh, which subdivision fills, would no
+    // longer cover the input: on a plane of 8 triangles (SimpleSkin) a sixth of the 16-px
+    // blocks inside the plane drew no dot. A corner (the boundary turns by more than ~2.5
+    // degrees) stays put: moving it along either edge would cut the corner off.
+    Vec3 jittered_on_boundary(Mesh::VertexHandle v) {
+        Vec3 ends[2];
+        int count = 0;
+        for (Mesh::VertexOHalfedgeIter h = mesh.voh_iter(v); h.is_valid() && count < 2; ++h) {
+            const Mesh::HalfedgeHandle g = *h;
+            if (mesh.is_boundary(g) || mesh.is_boundary(mesh.opposite_halfedge_handle(g)))
+                ends[count++] = mesh.point(mesh.to_vertex_handle(g));
+        }
+        const Vec3 p = mesh.point(v);
+        if (count < 2) return p;
+        const Vec3 a = ends[0] - p, b = ends[1] - p;
+        const double den = a.norm() * b.norm();
+        if (!(den > 0) || (a | b) > -0.999 * den) return p;
+        const Vec3 to = ends[rng.below(2)];
+        return p + (to - p) * (uniform() * double(config.jitter));
+    }
+
     // True if moving vertex v to q flips none of its faces (a fold, §4.4.2 "invalid
     // projection": each face normal keeps its side) and makes none of them a sliver (an
     // angle under kSliverDegrees that was not there before: §4.4.1 bounds the randomize
@@ -167,7 +191,8 @@ struct Builder {
             Mesh::HalfedgeHandle h = out[rng.below(out.size())];
             const Vec3 a = mesh.point(mesh.to_vertex_handle(h));
             const Vec3 b = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
-            const Vec3 q = jittered(mesh.point(v), a, b);
+            const Vec3 q =
+                mesh.is_boundary(v) ? jittered_on_boundary(v) : jittered(mesh.point(v), a, b);
             const SurfacePoint sp = surface->project(q, direction, seeds.data(), int(seeds.size()));
             if (!move_is_valid(v, sp.position)) {
                 ++stats.discarded_randomizations;
@@ -355,8 +380,10 @@ struct Builder {
             if (!out.empty()) {
                 Mesh::HalfedgeHandle o = out[rng.below(out.size())];
                 const Vec3 q =
-                    jittered(projected.position, mesh.point(mesh.to_vertex_handle(o)),
-                             mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(o))));
+                    mesh.is_boundary(v)
+                        ? jittered_on_boundary(v)
+                        : jittered(projected.position, mesh.point(mesh.to_vertex_handle(o)),
+                                   mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(o))));
                 seeds[0] = projected.host;
                 const SurfacePoint moved = surface->project(q, direction, seeds, seed_count);
                 if (move_is_valid(v, moved.position))
@@ -500,6 +527,26 @@ bool build_point_hierarchy(const RawScene& scene, const HierarchyConfig& config,
             *error = "mesh has a triangle index out of range";
             return false;
         }
+    if (config.method == HierarchyMethod::eliminate) {
+        // No connectivity needed: samples are drawn on the input triangles by area.
+        HierarchyStats st;
+        double area = 0;
+        for (uint32_t t = 0; t < scene.triangle_count(); ++t) {
+            const uint32_t* tri = &scene.indices[size_t(t) * 3];
+            const Vec3 a = input_position(scene, tri[0]);
+            const double twice =
+                ((input_position(scene, tri[1]) - a) % (input_position(scene, tri[2]) - a)).norm();
+            st.skipped_faces += twice == 0;
+            area += twice;
+        }
+        if (!(area > 0)) {
+            *error = "mesh has no non-degenerate triangles";
+            return false;
+        }
+        eliminate_hierarchy(scene, config, out, &st);
+        if (stats) *stats = st;
+        return true;
+    }
     Builder b(scene, config);
     b.build_graph();
     if (b.mesh.n_faces() == 0) {
@@ -510,7 +557,11 @@ bool build_point_hierarchy(const RawScene& scene, const HierarchyConfig& config,
     if (config.method != HierarchyMethod::simplify) {
         b.jitter_off = true;
         const size_t input_faces = b.mesh.n_faces();
-        const BaseMesh base = b.base_mesh(config.point_count);
+        const double per_point = config.method == HierarchyMethod::relax
+                                     ? std::max(config.relax.polygons_per_point, 1.0)
+                                     : 1.0;
+        const BaseMesh base =
+            b.base_mesh(size_t(std::ceil(double(config.point_count) * per_point)));
         b.mesh.clear();  // the arrays above are all ch. 5 needs
         b.mesh.garbage_collection();
         std::vector<PointRecord>().swap(b.points);

@@ -1,7 +1,9 @@
-// Point hierarchy on a mesh surface, thesis ch. 4: longest-edge subdivision below the input
-// resolution and edge-collapse simplification above it, each point stored as a host
-// triangle of the input mesh + barycentric coordinates, a relevance radius and its list of
-// relevant neighbours, ordered coarse to fine.
+// Point hierarchy on a mesh surface: each point stored as a host triangle of the input mesh +
+// barycentric coordinates, a relevance radius and its list of relevant neighbours, ordered
+// coarse to fine. Built by progressive sample elimination (the default, even on any
+// triangulation: bake/sample_elimination.h), thesis ch. 4 (longest-edge subdivision below
+// the input resolution and edge-collapse simplification above it) or ch. 5 (token
+// relaxation); docs/hierarchy.md compares them.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -24,6 +26,8 @@ enum class HierarchyMethod {
     simplify,  // thesis ch. 4: randomize + project, simplification and legal subdivision
     random,    // naive baseline: one random point per polygon, in random order (Fig. 5.1)
     relax,     // thesis ch. 5: primary relaxation, patch hierarchy, graph token relaxation
+    eliminate, // progressive weighted sample elimination over area-uniform surface samples
+               // (Yuksel 2015; bake/sample_elimination.h): even on any triangulation
 };
 
 // Token relaxation parameters (thesis ch. 5); the defaults are the thesis's.
@@ -35,13 +39,19 @@ struct RelaxConfig {
     int max_iterations = 50;      // §5.6.2: at most 50 iterations per level...
     int patience = 15;            // ...or 15 without a decrease of the total tension
     double repulsion_k = 1.0;     // §5.5.3: repulsionRadius = k sqrt(a / n), k in [1, 2]
+    // §5.1 asks for at least one polygon per point. With exactly one, the finest level is a
+    // point in every polygon and copies the input's tessellation density (the dark seams of
+    // a scan at zoom 4); with more, the finest level is the part of that level taken
+    // farthest first (bake/level_order.h), even wherever the input is finely tessellated.
+    double polygons_per_point = 1.5;
 };
 
 // Progress of a bake phase ("simplify", "subdivide", "relax", ...) in [0, 1].
 using ProgressFn = void (*)(const char* phase, float fraction, void* user);
 
 struct HierarchyConfig {
-    HierarchyMethod method = HierarchyMethod::simplify;
+    // The default was chosen by measurement over the corpus (docs/hierarchy.md).
+    HierarchyMethod method = HierarchyMethod::eliminate;
     uint32_t point_count = 20000;  // total points wanted
     uint64_t seed = 1;             // randomization, and which end of a collapsed edge goes
     // Randomize operator range (§4.4.1, Fig. 4.11 shows 15%, 35% and 75%): a vertex moves
@@ -68,7 +78,7 @@ struct HierarchyStats {
     uint32_t legal_splits = 0;       // extra splits made by refineLocal (Alg. 4.3)
     uint32_t slivers_before_subdivision = 0;  // faces with an angle < 10 deg, randomized input
     uint32_t slivers_after_subdivision = 0;   // the same after subdivision
-    uint32_t levels = 0;             // relax: levels of the patch hierarchy
+    uint32_t levels = 0;             // relax: levels of the patch hierarchy; eliminate: halvings
     uint32_t relax_iterations = 0;   // relax: token relaxation iterations, all levels
 };
 

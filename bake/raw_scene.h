@@ -101,6 +101,13 @@ struct RawScene {
     std::vector<float> morph_weights;          // default weight per slot
     std::vector<uint32_t> morph_weight_nodes;  // node (index into nodes) owning each slot
 
+    // Per triangle: 1 if the surface is double-sided (glTF material.doubleSided, or the
+    // bake's --double-sided on): its points draw from both sides. Empty: none is.
+    std::vector<uint8_t> double_sided;
+    // The input's up axis, recorded in the asset (format::kUpY, kUpZ). The scene itself is
+    // always Y-up once apply_up_axis() has run (bake/scene_orientation.h).
+    uint32_t up_axis = 1;
+
     std::vector<std::string> warnings;   // things skipped or repaired, for the bake log
 
     size_t vertex_count() const { return positions.size() / 3; }

@@ -348,6 +348,78 @@ LoadStatus parse_edges(Reader r, const MeshView& m, EdgesView* e) {
     return {};
 }
 
+// SIDE section: runs of double-sided triangles, expanded into one flag per triangle (and,
+// with an EDGE section, one per edge for the boundary rims) in storage allocated here.
+LoadStatus parse_sides(Reader r, const MeshView& m, Asset* a) {
+    SidesView& s = a->sides;
+    s.run_count = r.u32();
+    s.runs = r.take<uint32_t>(size_t(s.run_count) * 2);
+    if (!r.ok || r.at != r.size)
+        return fail(LoadError::malformed_section, "SIDE: size does not match %u runs",
+                    s.run_count);
+    uint64_t end = 0, total = 0;
+    for (uint32_t i = 0; i < s.run_count; ++i) {
+        const uint64_t first = s.runs[i * 2], count = s.runs[i * 2 + 1];
+        if (count == 0 || first < end || first + count > m.triangle_count)
+            return fail(LoadError::out_of_range,
+                        "SIDE: run %u (triangles %llu, +%llu) empty, overlapping or beyond %u "
+                        "triangles",
+                        i, static_cast<unsigned long long>(first),
+                        static_cast<unsigned long long>(count), m.triangle_count);
+        end = first + count;
+        total += count;
+    }
+    s.triangle_count = uint32_t(total);
+    if (total == 0) return {};
+    const size_t bytes = size_t(m.triangle_count) + a->edges.edge_count;
+    a->side_storage.reset(new (std::nothrow) uint8_t[bytes]);
+    if (!a->side_storage) return fail(LoadError::malformed_section, "SIDE: out of memory");
+    uint8_t* flags = a->side_storage.get();
+    std::memset(flags, 0, bytes);
+    for (uint32_t i = 0; i < s.run_count; ++i)
+        std::memset(flags + s.runs[i * 2], 1, s.runs[i * 2 + 1]);
+    s.triangle_double_sided = flags;
+    if (a->edges.edge_count > 0) {
+        uint8_t* boundary = flags + m.triangle_count;
+        for (uint32_t i = 0; i < a->edges.edge_count; ++i) {
+            const uint32_t* e = a->edges.edges + size_t(i) * 4;
+            boundary[i] = e[3] == format::kNoFace && flags[e[2]];
+        }
+        a->edges.double_sided_boundary = boundary;
+    }
+    return {};
+}
+
+// BNDS section: the input's up axis, the rest-pose box and one box per clip.
+LoadStatus parse_bounds(Reader r, Asset* a) {
+    BoundsView& b = a->bounds;
+    b.up_axis = r.u32();
+    const uint32_t clip_count = r.u32();
+    const float* rest = r.take<float>(6);
+    b.clips = r.take<float>(size_t(clip_count) * 6);
+    if (!r.ok || r.at != r.size)
+        return fail(LoadError::malformed_section, "BNDS: size does not match %u clip boxes",
+                    clip_count);
+    if (clip_count != a->clip_count)
+        return fail(LoadError::malformed_section, "BNDS: %u clip boxes for %u clips", clip_count,
+                    a->clip_count);
+    if (b.up_axis != format::kUpY && b.up_axis != format::kUpZ)
+        return fail(LoadError::bad_value, "BNDS: up axis %u is neither 1 (+Y) nor 2 (+Z)",
+                    b.up_axis);
+    for (uint32_t box = 0; box <= clip_count; ++box) {
+        const float* x = box == 0 ? rest : b.clips + size_t(box - 1) * 6;
+        if (!all_finite(x, 6) || x[0] > x[3] || x[1] > x[4] || x[2] > x[5]) {
+            if (box == 0)
+                return fail(LoadError::bad_value, "BNDS: rest box not finite or min > max");
+            return fail(LoadError::bad_value, "BNDS: clip %u box not finite or min > max",
+                        box - 1);
+        }
+    }
+    std::memcpy(b.rest, rest, sizeof(b.rest));
+    b.present = true;
+    return {};
+}
+
 const format::SectionEntry* find_section(const format::SectionEntry* table, uint32_t count,
                                          uint32_t tag) {
     for (uint32_t i = 0; i < count; ++i)
@@ -362,9 +434,10 @@ LoadStatus parse(const uint8_t* bytes, size_t size, Asset* a) {
     std::memcpy(&h, bytes, sizeof(h));
     if (h.endian_tag != format::kEndianTag)
         return fail(LoadError::wrong_endianness, "asset byte order does not match this machine");
-    if (h.version != format::kVersion)
+    if (h.version < format::kOldestVersion || h.version > format::kVersion)
         return fail(LoadError::unsupported_version,
-                    "asset format version %u, this runtime reads %u", h.version, format::kVersion);
+                    "asset format version %u, this runtime reads %u to %u", h.version,
+                    format::kOldestVersion, format::kVersion);
     a->version = h.version;
     if (h.file_size != size)
         return fail(LoadError::truncated, "asset is %zu bytes but its header says %llu", size,
@@ -387,12 +460,14 @@ LoadStatus parse(const uint8_t* bytes, size_t size, Asset* a) {
             return fail(LoadError::checksum_mismatch, "%s: checksum mismatch (corrupted asset)",
                         tag);
     }
-    const uint32_t tags[kSectionCount] = {format::kTagMesh,  format::kTagSkin,
-                                          format::kTagClips, format::kTagPointStream,
-                                          format::kTagEdges, format::kTagMorph};
+    const uint32_t tags[kSectionCount] = {
+        format::kTagMesh,  format::kTagSkin,   format::kTagClips, format::kTagPointStream,
+        format::kTagEdges, format::kTagMorph,  format::kTagBounds, format::kTagSides};
     const format::SectionEntry* sec[kSectionCount];
     for (int i = 0; i < kSectionCount; ++i) {
-        sec[i] = find_section(table, h.section_count, tags[i]);
+        // Version 2 had no BNDS or SIDE; like any unknown tag there, they are ignored.
+        const bool known = h.version >= 3 || (i != kSectionBounds && i != kSectionSides);
+        sec[i] = known ? find_section(table, h.section_count, tags[i]) : nullptr;
         a->section_size[i] = sec[i] ? sec[i]->size : 0;
     }
     if (!sec[0] || !sec[3])
@@ -414,6 +489,8 @@ LoadStatus parse(const uint8_t* bytes, size_t size, Asset* a) {
         st = parse_clips(reader(sec[2]), a->skin.skeleton.node_count, a->morph.weight_count, a);
     if (st.ok()) st = parse_point_stream(reader(sec[3]), a->mesh.triangle_count, a);
     if (st.ok() && sec[4]) st = parse_edges(reader(sec[4]), a->mesh, &a->edges);
+    if (st.ok() && sec[kSectionSides]) st = parse_sides(reader(sec[kSectionSides]), a->mesh, a);
+    if (st.ok() && sec[kSectionBounds]) st = parse_bounds(reader(sec[kSectionBounds]), a);
     return st;
 }
 
@@ -465,6 +542,12 @@ int find_clip(const Asset& asset, const char* name) {
     if (end != name && *end == '\0' && index >= 0 && index < long(asset.clip_count))
         return int(index);
     return -1;
+}
+
+const char* section_name(int section) {
+    static const char* const kNames[kSectionCount] = {"MESH", "SKIN", "CLIP", "PNTQ",
+                                                      "EDGE", "MRPH", "BNDS", "SIDE"};
+    return section >= 0 && section < kSectionCount ? kNames[section] : "?";
 }
 
 const char* load_error_name(LoadError error) {

@@ -57,6 +57,28 @@ struct PointsView {
 struct EdgesView {
     uint32_t edge_count = 0;
     const uint32_t* edges = nullptr;
+    // Per edge, built at load from the SIDE section: 1 on a boundary edge whose face is
+    // double-sided (an open sheet's rim, drawn from either side); nullptr without SIDE.
+    const uint8_t* double_sided_boundary = nullptr;
+};
+
+// Double-sided triangles (SIDE section, format version 3): points on them draw from both
+// sides with their normal turned toward the viewer (runtime/double_sided.h).
+struct SidesView {
+    uint32_t run_count = 0;
+    const uint32_t* runs = nullptr;  // 2 per run: first triangle, triangle count (ascending)
+    uint32_t triangle_count = 0;     // double-sided triangles in all runs
+    // Per MESH triangle, 1 if double-sided; expanded from the runs at load. nullptr when no
+    // triangle is double-sided.
+    const uint8_t* triangle_double_sided = nullptr;
+};
+
+// Framing and orientation (BNDS section, format version 3). A box is min xyz, max xyz.
+struct BoundsView {
+    bool present = false;          // false for version-2 assets: compute from the mesh
+    uint32_t up_axis = 0;          // format::kUpY or kUpZ (the input's up axis), 0 if absent
+    float rest[6] = {};            // rest pose (static meshes: the mesh)
+    const float* clips = nullptr;  // 6 per clip: every pose the clip samples, skinned
 };
 
 struct SkinView {
@@ -73,6 +95,8 @@ enum : int {
     kSectionPoints,
     kSectionEdges,
     kSectionMorph,
+    kSectionBounds,
+    kSectionSides,
     kSectionCount
 };
 
@@ -87,6 +111,8 @@ struct Asset {
     size_t file_size = 0;
     bool has_morph() const { return morph.target_count > 0; }
     anim::Morph morph = {};  // morph targets (empty if the asset has no MRPH section)
+    SidesView sides;         // empty if no triangle is double-sided
+    BoundsView bounds;       // present = false for version-2 assets
     uint16_t version = 0;
     size_t section_size[kSectionCount] = {};  // bytes per section, kSection* order (0: absent)
 
@@ -97,12 +123,16 @@ struct Asset {
     std::unique_ptr<uint32_t[]> point_storage;  // decoded point stream
     std::unique_ptr<float[]> clip_values;       // decoded clip key values
     std::unique_ptr<anim::MorphTarget[]> morph_target_storage;
+    std::unique_ptr<uint8_t[]> side_storage;  // triangle flags, then edge flags
 };
 
 // Reads and validates a whole asset. On failure `out` is left empty.
 LoadStatus load_asset_file(const char* path, Asset* out);
 // Validates `size` bytes already in memory; copies them into out->storage.
 LoadStatus load_asset_memory(const void* data, size_t size, Asset* out);
+
+// Section name of a kSection* index ("MESH", ..., "SIDE").
+const char* section_name(int section);
 
 // Index of the clip named `name`, or of clip number `name` if it is all digits; -1 if none.
 int find_clip(const Asset& asset, const char* name);

@@ -8,7 +8,8 @@
 namespace stipple::format {
 
 constexpr char kMagic[4] = {'S', 'T', 'I', 'P'};
-constexpr uint16_t kVersion = 2;
+constexpr uint16_t kVersion = 3;
+constexpr uint16_t kOldestVersion = 2;  // version 2 lacks BNDS and SIDE; the loader still reads it
 constexpr uint16_t kEndianTag = 0xFEFF;  // reads as 0xFFFE on a big-endian machine
 constexpr uint32_t kSectionAlign = 16;
 
@@ -22,6 +23,8 @@ constexpr uint32_t kTagClips = fourcc('C', 'L', 'I', 'P');
 constexpr uint32_t kTagEdges = fourcc('E', 'D', 'G', 'E');
 constexpr uint32_t kTagPointStream = fourcc('P', 'N', 'T', 'Q');  // the point hierarchy, coded
 constexpr uint32_t kTagMorph = fourcc('M', 'R', 'P', 'H');        // morph targets
+constexpr uint32_t kTagBounds = fourcc('B', 'N', 'D', 'S');       // v3: up axis, rest/clip bounds
+constexpr uint32_t kTagSides = fourcc('S', 'I', 'D', 'E');        // v3: double-sided triangle runs
 constexpr uint32_t kNoFace = 0xFFFFFFFFu;                         // second face of a boundary edge
 
 struct FileHeader {  // 32 bytes at offset 0
@@ -82,6 +85,15 @@ struct MorphTargetRecord {
 };
 static_assert(sizeof(MorphTargetRecord) == 20, "morph layout");
 constexpr uint32_t kNoDeltas = 0xFFFFFFFFu;
+
+// BNDS section (version 3): how the bake oriented the scene and where it goes.
+//   u32 up_axis, u32 clip_count, f32 rest[6], f32 clips[6 * clip_count]
+// Each box is min xyz then max xyz, in the runtime's (Y-up) space.
+constexpr uint32_t kUpY = 1;  // the input was Y-up (glTF by its spec): kept as is
+constexpr uint32_t kUpZ = 2;  // the input was Z-up: rotated at bake so +Z became +Y
+
+// SIDE section (version 3): u32 run_count, then run_count (first triangle, triangle count)
+// pairs, ascending and non-overlapping: the double-sided triangles of the MESH section.
 
 // CRC-32 (ISO-HDLC / zlib polynomial), used for section checksums.
 uint32_t crc32(const void* data, size_t size, uint32_t crc = 0);

@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <new>
 
+#include "runtime/double_sided.h"
 #include "runtime/point_placement.h"
 #include "runtime/silhouette.h"
 
@@ -127,29 +128,47 @@ void pose_mesh(Pipeline* p, const AnimationState& state, StageTimes* t, Clock::t
     if (t) t->skin += ms_since(clock);
 }
 
-// Orbit camera around the rest-pose bounding sphere; zoom narrows the field of view so
-// that zoom 2 is exactly twice as large on screen.
+// Orbit camera around the bounding sphere of what is framed: the baked bounds of the clips
+// being played (config.frame_clip / frame_blend_clip, BNDS section), else the rest pose; zoom
+// narrows the field of view so that zoom 2 is exactly twice as large on screen.
 void setup_camera(Pipeline* p) {
     const Asset& a = *p->asset;
     const PipelineConfig& c = p->config;
     glm::vec3 lo(1e30f), hi(-1e30f);
-    for (uint32_t i = 0; i < a.mesh.vertex_count; ++i) {
-        glm::vec3 v(p->vertex_positions[i * 3], p->vertex_positions[i * 3 + 1],
-                    p->vertex_positions[i * 3 + 2]);
-        lo = glm::min(lo, v);
-        hi = glm::max(hi, v);
+    for (int clip : {c.frame_clip, c.frame_blend_clip}) {
+        if (!a.bounds.present || clip < 0 || uint32_t(clip) >= a.clip_count) continue;
+        const float* box = a.bounds.clips + size_t(clip) * 6;
+        lo = glm::min(lo, glm::vec3(box[0], box[1], box[2]));
+        hi = glm::max(hi, glm::vec3(box[3], box[4], box[5]));
     }
+    if (lo.x > hi.x && a.bounds.present) {  // no clip framed: the rest pose's box
+        lo = glm::vec3(a.bounds.rest[0], a.bounds.rest[1], a.bounds.rest[2]);
+        hi = glm::vec3(a.bounds.rest[3], a.bounds.rest[4], a.bounds.rest[5]);
+    }
+    if (lo.x > hi.x)  // version-2 asset: the rest pose as posed in pipeline_init
+        for (uint32_t i = 0; i < a.mesh.vertex_count; ++i) {
+            glm::vec3 v(p->vertex_positions[i * 3], p->vertex_positions[i * 3 + 1],
+                        p->vertex_positions[i * 3 + 2]);
+            lo = glm::min(lo, v);
+            hi = glm::max(hi, v);
+        }
     const glm::vec3 center = 0.5f * (lo + hi);
     const float radius = std::max(0.5f * glm::length(hi - lo), 1e-6f);
     const float aspect = float(c.width) / float(c.height);
     const float half_fov = glm::radians(c.fov_degrees) * 0.5f;
     const float half_fov_min = aspect < 1.0f ? std::atan(std::tan(half_fov) * aspect) : half_fov;
     const float distance = radius / std::sin(half_fov_min);
-    const float yaw = glm::radians(c.yaw_degrees), pitch = glm::radians(c.pitch_degrees);
+    const float pitch_degrees = std::min(std::max(c.pitch_degrees, -90.0f), 90.0f);
+    const float yaw = glm::radians(c.yaw_degrees), pitch = glm::radians(pitch_degrees);
     const glm::vec3 dir(std::sin(yaw) * std::cos(pitch), std::sin(pitch),
                         std::cos(yaw) * std::cos(pitch));
+    // Screen up = d(dir)/d(pitch): perpendicular to the view direction at every pitch, +Y at
+    // pitch 0; looking straight down (pitch 90) the side away from the camera's heading is
+    // up, as if the camera had tilted over. lookAt never gets an up parallel to the view.
+    const glm::vec3 up(-std::sin(yaw) * std::sin(pitch), std::cos(pitch),
+                       -std::cos(yaw) * std::sin(pitch));
     const glm::vec3 eye = center + dir * distance;
-    const glm::mat4 view = glm::lookAt(eye, center, glm::vec3(0, 1, 0));
+    const glm::mat4 view = glm::lookAt(eye, center, up);
     const float zoomed_half_fov = std::atan(std::tan(half_fov) / c.zoom);
     const float near_plane = std::max(distance - 3.0f * radius, 0.02f * distance);
     const glm::mat4 proj =
@@ -163,6 +182,7 @@ void setup_camera(Pipeline* p) {
     s.max_point_size = c.max_point_size;
     s.smooth_slope = c.smooth_slope;
     s.constant_tone = c.constant_tone;
+    s.dark_tone = c.dark_tone;
     // Key light from the upper left, in front of the subject (camera space), to world.
     const glm::vec3 light_view = glm::normalize(glm::vec3(-0.5f, 0.6f, 0.6f));
     s.light_direction = glm::normalize(glm::vec3(glm::inverse(view) * glm::vec4(light_view, 0.0f)));
@@ -194,21 +214,47 @@ bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const Pipel
         p->contexts[slot].cursors = anim::Span<uint32_t>(p->cursors[slot].get(), max_channels);
     }
     const size_t verts = asset.mesh.vertex_count, points = asset.points.point_count;
+    const uint32_t budget = config.refinement_budget;
+    const size_t capacity = points + budget;
+    if (capacity > 0x7FFFFFFFu) {
+        std::snprintf(error, error_size, "%zu points + refinement budget %u is too many", points,
+                      budget);
+        return false;
+    }
+    p->point_capacity = uint32_t(capacity);
     if (!alloc(&p->dq_joints, joints) || !alloc(&p->models, nodes) ||
         !alloc(&p->skin_matrices, joints) || !alloc(&p->vertex_positions, verts * 3) ||
-        !alloc(&p->vertex_normals, verts * 3) || !alloc(&p->point_positions, points * 3) ||
-        !alloc(&p->point_normals, points * 3) || !alloc(&p->rest_radius, points) ||
-        !alloc(&p->radius, points) || !alloc(&p->size, points) ||
-        !alloc(&p->radius_scale, points) || !alloc(&p->draw_positions, points * 3) ||
-        !alloc(&p->draw_sizes, points) || !alloc(&p->triangle_front, asset.mesh.triangle_count) ||
+        !alloc(&p->vertex_normals, verts * 3) || !alloc(&p->point_positions, capacity * 3) ||
+        !alloc(&p->point_normals, capacity * 3) || !alloc(&p->rest_radius, points) ||
+        !alloc(&p->radius, capacity) || !alloc(&p->size, capacity) ||
+        !alloc(&p->radius_scale, points) || !alloc(&p->draw_positions, capacity * 3) ||
+        !alloc(&p->draw_sizes, capacity) || !alloc(&p->refined_triangle, budget) ||
+        !alloc(&p->refined_index, budget) ||
+        !alloc(&p->triangle_front, asset.mesh.triangle_count) ||
         !alloc(&p->lines, size_t(asset.edges.edge_count) * 6)) {
-        std::snprintf(error, error_size, "out of memory for %zu points", points);
+        std::snprintf(error, error_size, "out of memory for %zu points", capacity);
         return false;
+    }
+    if (asset.sides.triangle_double_sided) {  // runtime/double_sided.h: per-point flags, once
+        if (!alloc(&p->point_double_sided, points)) {
+            std::snprintf(error, error_size, "out of memory for %zu points", points);
+            return false;
+        }
+        if (!double_sided_point_flags(asset.points.point_count, asset.points.host_triangle,
+                                      asset.sides.triangle_double_sided,
+                                      p->point_double_sided.get()))
+            p->point_double_sided.reset();  // no point lies on a double-sided triangle
     }
     // Bind pose (the bake's space): how each baked radius relates to its neighbour distances.
     place_points(asset.points, asset.mesh.indices, asset.mesh.positions, asset.mesh.normals,
                  p->point_positions.get(), p->point_normals.get());
     relevance_scale(asset.points, p->point_positions.get(), p->radius_scale.get());
+    if (budget > 0 &&
+        !refinement_init(&p->refinement, asset.mesh, asset.points, p->point_positions.get())) {
+        std::snprintf(error, error_size, "out of memory for the run-time refinement of %u triangles",
+                      asset.mesh.triangle_count);
+        return false;
+    }
     // Rest pose: camera bounds, and the radii used when relevance updates are off (the baked
     // radii expressed in the same space as the posed mesh).
     Clock::time_point clock = Clock::now();
@@ -222,7 +268,7 @@ bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const Pipel
     RendererConfig rc;
     rc.width = config.width;
     rc.height = config.height;
-    rc.max_points = asset.points.point_count;
+    rc.max_points = p->point_capacity;
     rc.vertex_count = asset.mesh.vertex_count;
     rc.max_lines = asset.edges.edge_count;
     rc.line_width = config.line_width;
@@ -250,16 +296,36 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
     pose_mesh(p, state, t, &clock);
     place_points(a.points, a.mesh.indices, p->vertex_positions.get(), p->vertex_normals.get(),
                  p->point_positions.get(), p->point_normals.get());
+    face_double_sided_points(a.points.point_count, p->point_double_sided.get(),
+                             p->point_positions.get(), p->point_normals.get(), p->size_params.eye);
     if (t) t->place += ms_since(&clock);
-    const float* radius = p->rest_radius.get();
-    if (p->config.relevance_update) {
+    const uint32_t baked = a.points.point_count;
+    if (p->config.relevance_update)
         recompute_relevance(a.points, p->point_positions.get(), p->radius_scale.get(),
                             p->rest_radius.get(), p->radius.get());
-        radius = p->radius.get();
-    }
+    else
+        std::memcpy(p->radius.get(), p->rest_radius.get(), size_t(baked) * 4);
     if (t) t->relevance += ms_since(&clock);
-    size_stipples(a.points.point_count, p->point_positions.get(), p->point_normals.get(), radius,
+    // Where the baked hierarchy runs out, continue it (extra points after the baked ones).
+    p->refined_count = 0;
+    if (p->config.refinement_budget > 0) {
+        RefinedPoints extra;
+        extra.capacity = p->config.refinement_budget;
+        extra.positions = p->point_positions.get() + size_t(baked) * 3;
+        extra.normals = p->point_normals.get() + size_t(baked) * 3;
+        extra.radius = p->radius.get() + baked;
+        extra.triangle = p->refined_triangle.get();
+        extra.index = p->refined_index.get();
+        refine_points(&p->refinement, a.mesh, p->vertex_positions.get(), p->vertex_normals.get(),
+                      a.sides.triangle_double_sided, p->size_params, p->config.relevance_update,
+                      &extra, &p->refinement_stats);
+        p->refined_count = extra.count;
+    }
+    if (t) t->refine += ms_since(&clock);
+    const uint32_t count = baked + p->refined_count;
+    size_stipples(count, p->point_positions.get(), p->point_normals.get(), p->radius.get(),
                   p->size_params, p->size.get());
+    if (p->config.refinement_budget > 0) fade_baked_points(p->refinement, a.points, p->size.get());
     // Only dots with a size go to the GPU: at 100k points a frame draws ~5k, and uploading
     // and vertex-shading the other 95% cost llvmpipe more than this compaction costs here.
     uint32_t drawn = 0;
@@ -267,7 +333,7 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
     const float* position = p->point_positions.get();
     float* draw_size = p->draw_sizes.get();
     float* draw_position = p->draw_positions.get();
-    for (uint32_t i = 0; i < a.points.point_count; ++i) {
+    for (uint32_t i = 0; i < count; ++i) {
         draw_position[drawn * 3] = position[i * 3];
         draw_position[drawn * 3 + 1] = position[i * 3 + 1];
         draw_position[drawn * 3 + 2] = position[i * 3 + 2];
@@ -293,6 +359,27 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
     if (t) t->draw += ms_since(&clock);
 }
 
+uint64_t pipeline_point_id(const Pipeline& p, uint32_t i) {
+    const uint32_t baked = p.asset->points.point_count;
+    if (i < baked) return i;
+    const uint32_t j = i - baked;
+    return (uint64_t(p.refined_triangle[j]) + 1) << 32 | p.refined_index[j];
+}
+
+void pipeline_set_view(Pipeline* p, const PipelineConfig& view) {
+    PipelineConfig& c = p->config;
+    c.zoom = view.zoom;
+    c.yaw_degrees = view.yaw_degrees;
+    c.pitch_degrees = view.pitch_degrees;
+    c.fov_degrees = view.fov_degrees;
+    c.constant_tone = view.constant_tone;
+    c.dark_tone = view.dark_tone;
+    c.max_point_size = view.max_point_size;
+    c.smooth_slope = view.smooth_slope;
+    c.relevance_update = view.relevance_update;
+    setup_camera(p);
+}
+
 glm::vec3 pipeline_project(const Pipeline& p, uint32_t i) {
     const glm::vec4 clip =
         p.view_projection * glm::vec4(p.point_positions[i * 3], p.point_positions[i * 3 + 1],
@@ -300,6 +387,23 @@ glm::vec3 pipeline_project(const Pipeline& p, uint32_t i) {
     const glm::vec3 ndc = glm::vec3(clip) / clip.w;
     return glm::vec3((ndc.x * 0.5f + 0.5f) * float(p.config.width),
                      (0.5f - ndc.y * 0.5f) * float(p.config.height), ndc.z * 0.5f + 0.5f);
+}
+
+uint32_t pipeline_visible_dots(const Pipeline& p, const float* depth, VisibleDot* out,
+                               uint32_t capacity) {
+    const int w = p.config.width, h = p.config.height;
+    const uint32_t count = pipeline_point_count(p);
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < count && n < capacity; ++i) {
+        if (p.size[i] <= 0.0f) continue;
+        const glm::vec3 s = pipeline_project(p, i);
+        const int px = int(std::floor(s.x)), py = int(std::floor(s.y));
+        if (px < 0 || py < 0 || px >= w || py >= h) continue;
+        const float mesh_depth = depth[size_t(h - 1 - py) * size_t(w) + size_t(px)];
+        if (mesh_depth >= 1.0f || s.z > mesh_depth + 1e-5f) continue;  // off the object or hidden
+        out[n++] = VisibleDot{pipeline_point_id(p, i), s.x, s.y, p.size[i]};
+    }
+    return n;
 }
 
 void pipeline_destroy(Pipeline* p) {

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "runtime/asset.h"
+#include "runtime/point_refinement.h"
 #include "runtime/renderer.h"
 #include "runtime/stipple_size.h"
 
@@ -18,9 +19,13 @@ namespace stipple {
 struct PipelineConfig {
     int width = 640;
     int height = 480;
-    float zoom = 1.0f;             // 1: the rest-pose bounds fit the view; 2: twice as large
+    float zoom = 1.0f;             // 1: the framed bounds fit the view; 2: twice as large
     float yaw_degrees = 0.0f;      // camera orbit around the vertical axis
-    float pitch_degrees = 0.0f;    // camera elevation
+    float pitch_degrees = 0.0f;    // camera elevation, [-90, 90] (90: looking straight down)
+    // What zoom 1 frames: the union of the baked bounds (BNDS) of these clips, so an animated
+    // character stays in the picture; both -1 (or an asset without BNDS): the rest pose.
+    int frame_clip = -1;
+    int frame_blend_clip = -1;
     float fov_degrees = 30.0f;     // vertical field of view at zoom 1
     bool relevance_update = true;  // Alg. 6.4; false keeps rest-pose radii (Alg. 6.3 only)
     float constant_tone = -1.0f;   // in [0,1] to replace lighting
@@ -31,6 +36,10 @@ struct PipelineConfig {
     bool silhouettes = true;      // draw silhouette lines (needs the asset's EDGE section)
     float line_width = 1.0f;      // silhouette width in pixels
     bool depth_readback = false;  // keep the mesh depth for renderer_read_depth (dot lists)
+    // Run-time refinement (runtime/point_refinement.h): extra points generated per frame where
+    // the baked hierarchy runs out (close-ups, stretch). 0 turns it off.
+    uint32_t refinement_budget = 1u << 18;
+    float dark_tone = 0.6f;  // darkest tone lighting asks for (thesis §8.4), in [0, 1]
 };
 
 // What pose to draw: one clip, optionally blended with a second (walk -> run crossfades are
@@ -44,7 +53,8 @@ struct AnimationState {
 };
 
 struct StageTimes {  // milliseconds
-    double sample = 0, skin = 0, place = 0, relevance = 0, size = 0, silhouette = 0, draw = 0,
+    double sample = 0, skin = 0, place = 0, relevance = 0, refine = 0, size = 0, silhouette = 0,
+           draw = 0,
            readback = 0;
 };
 
@@ -65,10 +75,19 @@ struct Pipeline {
     std::unique_ptr<glm::mat4[]> models;                        // node_count
     std::unique_ptr<glm::mat4[]> skin_matrices;                 // joint_count
     std::unique_ptr<float[]> vertex_positions, vertex_normals;  // 3 * vertex_count
-    std::unique_ptr<float[]> point_positions, point_normals;    // 3 * point_count
+    // Points of the frame: the baked hierarchy (point_count) followed by the run-time
+    // refinement's extra points (up to refinement_budget); capacity = point_count + budget.
+    uint32_t point_capacity = 0;
+    std::unique_ptr<float[]> point_positions, point_normals;    // 3 * capacity
     std::unique_ptr<float[]> radius_scale;                // point_count, see relevance_scale()
     std::unique_ptr<float[]> draw_positions, draw_sizes;  // the dots with a size, compacted
-    std::unique_ptr<float[]> rest_radius, radius, size;   // point_count
+    std::unique_ptr<float[]> rest_radius;                 // point_count
+    std::unique_ptr<float[]> radius, size;                // capacity
+    RefinementMesh refinement;
+    std::unique_ptr<uint32_t[]> refined_triangle, refined_index;  // budget
+    uint32_t refined_count = 0;                           // extra points in the last frame
+    RefinementStats refinement_stats;
+    std::unique_ptr<uint8_t[]> point_double_sided;  // point_count, or null: runtime/double_sided.h
     std::unique_ptr<uint8_t[]> triangle_front;            // triangle_count
     std::unique_ptr<float[]> lines;                       // 6 * edge_count
     uint32_t points_drawn = 0;                            // size > 0 in the last frame
@@ -85,8 +104,37 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* times)
 // The same for one clip at `time` seconds (-1: rest pose).
 void pipeline_frame(Pipeline* p, int clip, float time, StageTimes* times);
 
+// Changes what needs no new memory between frames: the orbit camera (zoom, yaw, pitch,
+// fov_degrees) and the tone settings (constant_tone, dark_tone, max_point_size,
+// smooth_slope, relevance_update). The other fields of `view` are ignored. For zoom sweeps and
+// frame checks that try many views on one loaded pipeline.
+void pipeline_set_view(Pipeline* p, const PipelineConfig& view);
+
+// Points of the last frame: baked ones, then the run-time refinement's.
+inline uint32_t pipeline_point_count(const Pipeline& p) {
+    return (p.asset ? p.asset->points.point_count : 0) + p.refined_count;
+}
+
+// Stable id of point i of the last frame: baked points keep their index; an extra point is
+// ((host triangle + 1) << 32) | its rank in the triangle's sequence, the same every frame.
+uint64_t pipeline_point_id(const Pipeline& p, uint32_t i);
+
 // Projects point i of the last frame to pixels (origin top-left) and window depth.
 glm::vec3 pipeline_project(const Pipeline& p, uint32_t i);
+
+// A dot of the last frame as seen: stable id (pipeline_point_id), centre in pixels (origin
+// top-left) and diameter in pixels.
+struct VisibleDot {
+    uint64_t id;
+    float x, y, size;
+};
+
+// The dots the last frame drew where the picture shows them: size > 0, centre inside the
+// image and not hidden by the mesh (the depth test the GPU makes, at the centre pixel).
+// `depth` is renderer_read_depth's output (bottom row first). Writes at most `capacity`
+// (p.point_capacity is always enough) and returns the count.
+uint32_t pipeline_visible_dots(const Pipeline& p, const float* depth, VisibleDot* out,
+                               uint32_t capacity);
 
 void pipeline_destroy(Pipeline* p);
 

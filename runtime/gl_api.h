@@ -63,7 +63,15 @@ namespace stipple {
     X(PFNGLPIXELSTOREIPROC, PixelStorei)                                                     \
     X(PFNGLFINISHPROC, Finish)                                                               \
     X(PFNGLLINEWIDTHPROC, LineWidth)                                                         \
-    X(PFNGLGETFLOATVPROC, GetFloatv)
+    X(PFNGLGETFLOATVPROC, GetFloatv)                                                         \
+    X(PFNGLGENTEXTURESPROC, GenTextures)                                                     \
+    X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                               \
+    X(PFNGLBINDTEXTUREPROC, BindTexture)                                                     \
+    X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                                                 \
+    X(PFNGLTEXIMAGE2DPROC, TexImage2D)                                                       \
+    X(PFNGLTEXPARAMETERIPROC, TexParameteri)                                                 \
+    X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)                                   \
+    X(PFNGLUNIFORM1IPROC, Uniform1i)
 
 struct GlApi {
 #define STIPPLE_GL_MEMBER(type, name) type name = nullptr;

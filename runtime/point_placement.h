@@ -18,15 +18,18 @@ void place_points(const PointsView& points, const uint32_t* indices, const float
 void mean_neighbour_distance(const PointsView& points, const float* point_positions,
                              float* out_distance);
 
-// Per-point factor radius / mean neighbour distance in the bake's (bind) pose, computed once
-// at load: 1 where the bake stored the plain mean distance, other values where it calibrated
-// the radius. Points without neighbours get 0.
+// Per-point factor that turns the neighbour measure into the baked radius in the bake's (bind)
+// pose, computed once at load. The measure is I2^(1/4) of the neighbour offsets' second moment
+// (its square follows the local area exactly under linear deformation); points whose
+// neighbours are nearly collinear use the mean neighbour distance instead (stored negated).
+// Points without neighbours get 0.
 void relevance_scale(const PointsView& points, const float* bind_point_positions,
                      float* out_scale);
 
-// Thesis Alg. 6.4: re-scales every point's relevance radius by how far its relevant
-// neighbours are now: radius = scale * mean neighbour distance in the current pose.
-// Points without neighbours keep `fallback_radius`.
+// Thesis Alg. 6.4: re-scales every point's relevance radius by how its relevant neighbours
+// lie now: radius = scale * measure in the current pose, so the region of influence (radius^2)
+// grows and shrinks with the surface area around the point. Points without neighbours keep
+// `fallback_radius`.
 void recompute_relevance(const PointsView& points, const float* point_positions,
                          const float* scale, const float* fallback_radius, float* out_radius);
 

@@ -27,27 +27,50 @@ void main() {
 }
 )";
 
-// Dots narrower than a pixel are drawn one pixel wide with proportionally less ink, so the
-// ink laid down stays pi (d/2)^2 for every diameter d and tone is not quantised by pixels.
+// Each dot is a disc with a one-pixel linear antialiasing ramp centred on its edge; such a
+// disc of radius R lays down pi (R^2 + 1/12) of ink, not pi R^2. So the disc is drawn with
+// R^2 = r^2 - 1/12 for the wanted radius r, and dots too small for that are drawn with
+// R = 0.5 and proportionally less ink: every diameter d lays down exactly pi (d/2)^2, and tone
+// is not quantised (or inflated, by up to 33% for sub-pixel dots) by pixels.
+// Visibility is decided once per dot, at its centre, against the mesh pass's depth (read
+// from the depth texture in the vertex shader): a dot is drawn whole or not at all. A per-
+// fragment depth test would clip each sprite by the surface curving toward the viewer around
+// it and lose up to 16% of the ink on small objects (measured: teapot at 2,200 px, tone 0.3).
 const char* kPointVs = R"(#version 300 es
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in float a_size;
 uniform mat4 u_view_projection;
+uniform highp sampler2D u_depth;
 out float v_radius;
 out float v_ink_scale;
+void cull() {
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: not rasterised
+    gl_PointSize = 1.0;
+    v_radius = 0.0;
+    v_ink_scale = 0.0;
+}
 void main() {
     if (a_size <= 0.0) {
-        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: not rasterised
-        gl_PointSize = 1.0;
-        v_radius = 0.0;
-        v_ink_scale = 0.0;
+        cull();
         return;
     }
     gl_Position = u_view_projection * vec4(a_position, 1.0);
-    float r = max(0.5 * a_size, 0.5);
-    float f = 0.5 * a_size / r;
+    vec3 ndc = gl_Position.xyz / gl_Position.w;
+    ivec2 size = textureSize(u_depth, 0);
+    ivec2 pixel = ivec2(floor((ndc.xy * 0.5 + 0.5) * vec2(size)));
+    if (gl_Position.w <= 0.0 || any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, size))) {
+        cull();
+        return;
+    }
+    float mesh = texelFetch(u_depth, pixel, 0).r;
+    if (mesh >= 1.0 || ndc.z * 0.5 + 0.5 > mesh + 1e-5) {  // off the object, or hidden
+        cull();
+        return;
+    }
+    float wanted = 0.25 * a_size * a_size;  // r^2
+    float r = sqrt(max(wanted - 1.0 / 12.0, 0.25));
     v_radius = r;
-    v_ink_scale = f * f;
+    v_ink_scale = min(wanted / (r * r + 1.0 / 12.0), 1.0);
     gl_PointSize = 2.0 * r + 1.0;
 }
 )";
@@ -172,12 +195,25 @@ bool renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config, c
         gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER,
                                    r->depth_copy_rb);
     }
-    r->depth_rb = renderbuffer(gl, GL_DEPTH_COMPONENT24, w, h);
-    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, r->depth_rb);
+    gl.GenTextures(1, &r->depth_tex);
+    gl.BindTexture(GL_TEXTURE_2D, r->depth_tex);
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, w, h, 0, GL_DEPTH_COMPONENT,
+                  GL_UNSIGNED_INT, nullptr);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    gl.BindTexture(GL_TEXTURE_2D, 0);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, r->depth_tex, 0);
     GLenum status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE) {
-        std::snprintf(error, error_size, "framebuffer %dx%d incomplete (status 0x%x)", w, h,
-                      status);
+    // The dots pass samples the depth texture, so it draws into a second framebuffer that
+    // holds only the colour: no attachment is read and written at once.
+    gl.GenFramebuffers(1, &r->ink_fbo);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, r->ink_fbo);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, r->color_rb);
+    const GLenum ink_status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE || ink_status != GL_FRAMEBUFFER_COMPLETE) {
+        std::snprintf(error, error_size, "framebuffer %dx%d incomplete (status 0x%x, 0x%x)", w,
+                      h, status, ink_status);
         renderer_destroy(r);
         return false;
     }
@@ -194,6 +230,7 @@ bool renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config, c
     r->mesh_paper = gl.GetUniformLocation(r->mesh_program, "u_paper");
     r->point_vp = gl.GetUniformLocation(r->point_program, "u_view_projection");
     r->point_ink = gl.GetUniformLocation(r->point_program, "u_ink");
+    r->point_depth = gl.GetUniformLocation(r->point_program, "u_depth");
     r->line_vp = gl.GetUniformLocation(r->line_program, "u_view_projection");
     r->line_ink = gl.GetUniformLocation(r->line_program, "u_ink");
 
@@ -259,7 +296,12 @@ void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const flo
 void renderer_draw_points(Renderer* r, const glm::mat4& view_projection, const float* positions,
                           const float* sizes, uint32_t point_count) {
     const GlApi& gl = r->gl;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, r->ink_fbo);
     begin_ink_pass(r, r->point_program, r->point_vp, r->point_ink, view_projection);
+    gl.Disable(GL_DEPTH_TEST);  // each dot's visibility is tested at its centre (kPointVs)
+    gl.ActiveTexture(GL_TEXTURE0);
+    gl.BindTexture(GL_TEXTURE_2D, r->depth_tex);
+    gl.Uniform1i(r->point_depth, 0);
     gl.Enable(GL_BLEND);  // antialiased dot edges
     gl.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
     gl.BindVertexArray(r->point_vao);
@@ -269,6 +311,8 @@ void renderer_draw_points(Renderer* r, const glm::mat4& view_projection, const f
     gl.BufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(point_count) * 4), sizes);
     gl.DrawArrays(GL_POINTS, 0, GLsizei(point_count));
     gl.BindVertexArray(0);
+    gl.BindTexture(GL_TEXTURE_2D, 0);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
 }
 
 void renderer_draw_lines(Renderer* r, const glm::mat4& view_projection, const float* lines,
@@ -318,9 +362,11 @@ void renderer_destroy(Renderer* r) {
     if (r->mesh_program) gl.DeleteProgram(r->mesh_program);
     if (r->point_program) gl.DeleteProgram(r->point_program);
     if (r->line_program) gl.DeleteProgram(r->line_program);
-    GLuint rbs[3] = {r->color_rb, r->depth_copy_rb, r->depth_rb};
-    gl.DeleteRenderbuffers(3, rbs);
+    GLuint rbs[2] = {r->color_rb, r->depth_copy_rb};
+    gl.DeleteRenderbuffers(2, rbs);
+    if (r->depth_tex) gl.DeleteTextures(1, &r->depth_tex);
     if (r->fbo) gl.DeleteFramebuffers(1, &r->fbo);
+    if (r->ink_fbo) gl.DeleteFramebuffers(1, &r->ink_fbo);
     *r = Renderer();
 }
 

@@ -1,6 +1,7 @@
 // GLES 3 stipple renderer (thesis §3.2): the mesh is drawn as a plain "paper" coloured depth
 // pass pushed slightly behind the surface, then every point is drawn as a round,
-// antialiased dot of its computed diameter, depth-tested against that pass.
+// antialiased dot of its computed diameter, whole when its centre passes the depth test
+// against that pass (tested in the vertex shader on the depth texture), not at all otherwise.
 // All GL objects are created in renderer_init; drawing a frame creates nothing.
 #pragma once
 #include <cstddef>
@@ -34,9 +35,11 @@ struct RendererConfig {
 struct Renderer {
     GlApi gl;
     RendererConfig config;
-    GLuint fbo = 0, color_rb = 0, depth_copy_rb = 0, depth_rb = 0;
+    GLuint fbo = 0, color_rb = 0, depth_copy_rb = 0, depth_tex = 0;
+    GLuint ink_fbo = 0;  // the colour renderbuffer alone: the dots pass samples depth_tex
     GLuint mesh_program = 0, point_program = 0;
-    GLint mesh_vp = -1, mesh_bias = -1, mesh_paper = -1, point_vp = -1, point_ink = -1;
+    GLint mesh_vp = -1, mesh_bias = -1, mesh_paper = -1, point_vp = -1, point_ink = -1,
+          point_depth = -1;
     GLuint mesh_vao = 0, mesh_vbo = 0, mesh_ibo = 0;
     GLuint point_vao = 0, point_pos_vbo = 0, point_size_vbo = 0;
     GLuint line_program = 0, line_vao = 0, line_vbo = 0;

@@ -25,7 +25,9 @@ uint32_t silhouette_lines(const EdgesView& edges, const uint8_t* front, const fl
         const uint32_t* e = edges.edges + size_t(i) * 4;
         const bool f0 = front[e[2]];
         const bool f1 = e[3] == format::kNoFace ? false : front[e[3]];
-        if (f0 == f1) continue;
+        // The rim of a double-sided open surface is seen from both sides: always an outline.
+        const bool rim = edges.double_sided_boundary && edges.double_sided_boundary[i];
+        if (f0 == f1 && !rim) continue;
         std::memcpy(out_lines + size_t(count) * 6, positions + size_t(e[0]) * 3, 12);
         std::memcpy(out_lines + size_t(count) * 6 + 3, positions + size_t(e[1]) * 3, 12);
         ++count;

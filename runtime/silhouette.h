@@ -1,6 +1,6 @@
 // Silhouette lines (thesis §3.2): edges between a front-facing and a back-facing triangle
-// in the current pose, plus boundary edges of front-facing triangles, drawn as ink lines
-// over the depth pass.
+// in the current pose, plus boundary edges of front-facing triangles (of any triangle when it
+// is double-sided: EdgesView::double_sided_boundary), drawn as ink lines over the depth pass.
 #pragma once
 #include <cstdint>
 #include <glm/glm.hpp>

@@ -51,6 +51,11 @@ typedef struct stipple_player_desc {
     int no_relevance_update;    /* 1: keep rest-pose relevance (thesis Alg. 6.3 only) */
     int no_silhouettes;         /* 1: no silhouette lines */
     int dual_quaternion_skinning; /* 1: DQS instead of linear blend skinning */
+    int dark_tone_set;          /* 1: use dark_tone; 0: 0.6 */
+    float dark_tone;            /* darkest tone lighting asks for, in [0, 1] (thesis §8.4) */
+    int refinement_budget;      /* extra points per frame where the baked hierarchy runs out
+                                   (close-ups, stretch); 0: 262144, < 0: none. Memory for them
+                                   is taken at create: about 72 bytes per point. */
     uint32_t background_rgb;    /* 0xRRGGBB; used only when background_set */
     int background_set;         /* 0: white paper */
     stipple_get_proc_fn get_proc_address; /* required */

@@ -111,6 +111,9 @@ stipple_result stipple_player_create(const stipple_asset* asset, const stipple_p
     c.constant_tone = desc->use_constant_tone ? desc->constant_tone : -1.0f;
     c.max_point_size = desc->max_point_size > 0 ? desc->max_point_size : 3.0f;
     c.relevance_update = !desc->no_relevance_update;
+    if (desc->dark_tone_set) c.dark_tone = desc->dark_tone;
+    if (desc->refinement_budget != 0)
+        c.refinement_budget = desc->refinement_budget < 0 ? 0u : uint32_t(desc->refinement_budget);
     c.silhouettes = !desc->no_silhouettes;
     c.skinning = desc->dual_quaternion_skinning ? stipple::anim::Skinning::dqs
                                                 : stipple::anim::Skinning::lbs;
@@ -120,6 +123,10 @@ stipple_result stipple_player_create(const stipple_asset* asset, const stipple_p
     if (c.width > 16384 || c.height > 16384 ||
         (desc->use_constant_tone && !(c.constant_tone >= 0 && c.constant_tone <= 1)))
         return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "size or tone out of range");
+    if (!(c.dark_tone >= 0 && c.dark_tone <= 1))
+        return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "dark_tone out of [0, 1]");
+    if (desc->refinement_budget > (1 << 22))
+        return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "refinement_budget above 4194304");
 
     stipple::GlApi gl;
     if (const char* missing = stipple::load_gl_api(desc->get_proc_address, &gl)) {

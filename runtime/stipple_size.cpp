@@ -9,16 +9,37 @@ float smooth_slope_ink_fraction(float s) {
     return 1.0f / s + (s - 2.0f * std::log(s) - 1.0f / s) / ((s - 1.0f) * (s - 1.0f));
 }
 
+float focal_pixels(const SizeParams& params) {
+    // Row 1 of view_projection is P[1][1] times the view's unit up axis, so its length is
+    // P[1][1]; focal = P[1][1] * H / 2.
+    const glm::mat4& m = params.view_projection;
+    return glm::length(glm::vec3(m[0][1], m[1][1], m[2][1])) * params.viewport_height * 0.5f;
+}
+
+float ink_for_tone(const SizeParams& params, float tone) {
+    const float t = tone < 0.0f ? 0.0f : (tone > 1.0f ? 1.0f : tone);
+    const float ink = t * (1.0f + params.overlap_gain * std::pow(t, params.overlap_power));
+    return ink / smooth_slope_ink_fraction(params.smooth_slope);
+}
+
+InkTable::InkTable(const SizeParams& params) {
+    for (int i = 0; i <= kSteps; ++i) {
+        const float lit = float(i) / kSteps;
+        const float tone = params.constant_tone >= 0.0f
+                               ? params.constant_tone
+                               : params.dark_tone + (params.light_tone - params.dark_tone) * lit;
+        ink[i] = ink_for_tone(params, tone);
+    }
+}
+
 void size_stipples(uint32_t count, const float* positions, const float* normals,
                    const float* radius, const SizeParams& params, float* out_size) {
-    // Pixels per world unit at clip depth w is focal / w, with focal = P[1][1] * H / 2.
-    // Row 3 of view_projection gives w; row 1 is P[1][1] times the view's unit up axis, so
-    // its length is P[1][1].
+    // Row 3 of view_projection gives the clip depth w.
     const glm::mat4& m = params.view_projection;
     const glm::vec4 row_w(m[0][3], m[1][3], m[2][3], m[3][3]);
-    const float focal = glm::length(glm::vec3(m[0][1], m[1][1], m[2][1])) * params.viewport_height * 0.5f;
+    const float focal = focal_pixels(params);
+    const InkTable table(params);
     const glm::vec3 l = params.light_direction;
-    const float tone_gain = 1.0f / smooth_slope_ink_fraction(params.smooth_slope);
     for (uint32_t i = 0; i < count; ++i) {
         const glm::vec3 p(positions[i * 3], positions[i * 3 + 1], positions[i * 3 + 2]);
         const glm::vec3 n(normals[i * 3], normals[i * 3 + 1], normals[i * 3 + 2]);
@@ -31,12 +52,8 @@ void size_stipples(uint32_t count, const float* positions, const float* normals,
         }
         const float r_px = radius[i] * focal / w;
         const float region_px = kRegionPerRadiusSquared * r_px * r_px * n_dot_v;  // §3.1.2
-        float tone = params.constant_tone;
-        if (tone < 0.0f) {
-            const float lit = std::fmax(glm::dot(n, l), 0.0f);
-            tone = params.dark_tone + (params.light_tone - params.dark_tone) * lit;
-        }
-        out_size[i] = smooth_point_size(tone * tone_gain, region_px, params.max_point_size, params.smooth_slope);
+        const float ink = table.at(glm::dot(n, l));
+        out_size[i] = smooth_point_size(ink, region_px, params.max_point_size, params.smooth_slope);
     }
 }
 

@@ -75,3 +75,37 @@ long c_api_blend_height(const char* asset_path, stipple_get_proc_fn get_proc, fl
     stipple_asset_destroy(asset);
     return top < 0 ? 0 : bottom - top + 1;
 }
+
+/* Dark pixels of a close-up (zoom 8, constant tone 0.3) with the given refinement budget
+ * (0: default, < 0: none); -1 on error. */
+long c_api_closeup_dark_pixels(const char* asset_path, stipple_get_proc_fn get_proc,
+                               int refinement_budget) {
+    stipple_asset* asset = NULL;
+    stipple_player* player = NULL;
+    stipple_player_desc desc;
+    uint8_t* rgba;
+    long dark = 0;
+    size_t i;
+    if (stipple_asset_load_file(asset_path, &asset) != STIPPLE_OK) return -1;
+    memset(&desc, 0, sizeof(desc));
+    desc.width = 320;
+    desc.height = 240;
+    desc.zoom = 8.0f;
+    desc.use_constant_tone = 1;
+    desc.constant_tone = 0.3f;
+    desc.no_silhouettes = 1;
+    desc.refinement_budget = refinement_budget;
+    desc.get_proc_address = get_proc;
+    if (stipple_player_create(asset, &desc, &player) != STIPPLE_OK) {
+        stipple_asset_destroy(asset);
+        return -1;
+    }
+    rgba = (uint8_t*)malloc(320 * 240 * 4);
+    stipple_player_draw(player, -1, 0.0f);
+    stipple_player_read_rgba(player, rgba);
+    for (i = 0; i < 320 * 240; ++i) dark += rgba[i * 4] < 128;
+    free(rgba);
+    stipple_player_destroy(player);
+    stipple_asset_destroy(asset);
+    return dark;
+}

@@ -153,7 +153,7 @@ TEST(AssetFormat, CompactPointsRoundTripWithinStatedError) {
     Asset a;
     LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
     ASSERT_TRUE(st.ok()) << st.message;
-    EXPECT_EQ(a.version, 2);
+    EXPECT_EQ(a.version, 3);
     ASSERT_EQ(a.points.point_count, n);
     const float bary_error = 0.5f / 4095.0f + 1e-6f;
     for (uint32_t i = 0; i < n; ++i) {
@@ -284,6 +284,117 @@ TEST(AssetFormat, OutOfRangeIndicesAreRejectedEvenWithValidChecksums) {
     fix_checksums(&bytes);
     st = load_asset_memory(bytes.data(), bytes.size(), &a);
     EXPECT_EQ(st.error, LoadError::bad_value);
+}
+
+// Version 3: BNDS (up axis, rest and clip boxes) and SIDE (double-sided triangle runs).
+TEST(AssetFormat, BoundsAndSidesRoundTrip) {
+    bake::RawScene s;
+    bake::PointHierarchy p;
+    make_scene(&s, &p);
+    s.up_axis = format::kUpZ;
+    s.double_sided = {0, 1};
+    std::vector<uint8_t> bytes = bake::encode_asset(s, p);
+    Asset a;
+    LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
+    ASSERT_TRUE(st.ok()) << st.message;
+    EXPECT_EQ(a.version, format::kVersion);
+    ASSERT_TRUE(a.bounds.present);
+    EXPECT_EQ(a.bounds.up_axis, format::kUpZ);
+    // Rest pose: the quad as stored (identity skin at rest).
+    const float rest[6] = {0, 0, 0, 1, 1, 0};
+    for (int k = 0; k < 6; ++k) EXPECT_NEAR(a.bounds.rest[k], rest[k], 1e-6) << k;
+    // "wave" turns node 1 (vertices 1 and 2, half and fully) by 90 degrees about z around
+    // (0, 0.5): vertex 2 (1, 1) ends at (-0.5, 1.5) and on the way passes straight above the
+    // pivot, at y = 0.5 + |(1, 0.5)| = 1.618; the box holds every pose sampled (60 per second).
+    ASSERT_NE(a.bounds.clips, nullptr);
+    EXPECT_NEAR(a.bounds.clips[0], -0.5f, 1e-5);
+    EXPECT_NEAR(a.bounds.clips[4], 0.5f + std::sqrt(1.25f), 1e-3);
+    EXPECT_GE(a.bounds.clips[3], 1.0f);
+    ASSERT_EQ(a.sides.run_count, 1u);
+    EXPECT_EQ(a.sides.triangle_count, 1u);
+    EXPECT_EQ(a.sides.triangle_double_sided[0], 0);
+    EXPECT_EQ(a.sides.triangle_double_sided[1], 1);
+    ASSERT_NE(a.edges.double_sided_boundary, nullptr);
+    uint32_t rims = 0;
+    for (uint32_t e = 0; e < a.edges.edge_count; ++e) rims += a.edges.double_sided_boundary[e];
+    EXPECT_EQ(rims, 2u);  // triangle 1's two boundary edges
+    EXPECT_EQ(a.section_size[kSectionSides], 12u);  // one run: count + (first, count)
+    // No double-sided triangle: no SIDE section.
+    s.double_sided = {0, 0};
+    bytes = bake::encode_asset(s, p);
+    st = load_asset_memory(bytes.data(), bytes.size(), &a);
+    ASSERT_TRUE(st.ok()) << st.message;
+    EXPECT_EQ(a.section_size[kSectionSides], 0u);
+    EXPECT_EQ(a.sides.triangle_double_sided, nullptr);
+    EXPECT_EQ(a.edges.double_sided_boundary, nullptr);
+}
+
+TEST(AssetFormat, BadBoundsAndSidesAreRejected) {
+    bake::RawScene s;
+    bake::PointHierarchy p;
+    make_scene(&s, &p);
+    s.double_sided = {1, 1};
+    const std::vector<uint8_t> good = bake::encode_asset(s, p);
+    const size_t sides = section_offset(good, format::kTagSides);
+    const size_t bounds = section_offset(good, format::kTagBounds);
+    ASSERT_NE(sides, 0u);
+    ASSERT_NE(bounds, 0u);
+    Asset a;
+    auto load = [&](std::vector<uint8_t> b) {
+        fix_checksums(&b);
+        return load_asset_memory(b.data(), b.size(), &a);
+    };
+    auto put = [](std::vector<uint8_t>* b, size_t at, uint32_t v) {
+        std::memcpy(&(*b)[at], &v, 4);
+    };
+    std::vector<uint8_t> b = good;
+    put(&b, sides + 8, 3);  // run (0, 3): beyond the 2 triangles
+    LoadStatus st = load(b);
+    EXPECT_EQ(st.error, LoadError::out_of_range);
+    EXPECT_NE(std::strstr(st.message, "SIDE: run 0"), nullptr) << st.message;
+    b = good;
+    put(&b, sides + 8, 0);  // an empty run
+    EXPECT_EQ(load(b).error, LoadError::out_of_range);
+    b = good;
+    put(&b, bounds, 7);  // up axis 7
+    st = load(b);
+    EXPECT_EQ(st.error, LoadError::bad_value);
+    EXPECT_NE(std::strstr(st.message, "BNDS: up axis 7"), nullptr) << st.message;
+    b = good;
+    put(&b, bounds + 4, 2);  // two clip boxes for one clip
+    EXPECT_EQ(load(b).error, LoadError::malformed_section);
+    b = good;
+    const float flipped = 5.0f;  // rest min x 5 > max x 1
+    std::memcpy(&b[bounds + 8], &flipped, 4);
+    st = load(b);
+    EXPECT_EQ(st.error, LoadError::bad_value);
+    EXPECT_NE(std::strstr(st.message, "BNDS: rest"), nullptr) << st.message;
+}
+
+// Version-2 assets (no BNDS, no SIDE) still load: the runtime frames the rest pose and
+// draws every triangle single-sided. Sections with those tags in a version-2 file were
+// unknown tags then and are ignored.
+TEST(AssetFormat, VersionTwoStillLoads) {
+    bake::RawScene s;
+    bake::PointHierarchy p;
+    make_scene(&s, &p);
+    s.double_sided = {1, 1};
+    std::vector<uint8_t> bytes = bake::encode_asset(s, p);
+    const uint16_t two = 2;
+    std::memcpy(&bytes[4], &two, 2);
+    Asset a;
+    LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
+    ASSERT_TRUE(st.ok()) << st.message;
+    EXPECT_EQ(a.version, 2);
+    EXPECT_FALSE(a.bounds.present);
+    EXPECT_EQ(a.sides.triangle_double_sided, nullptr);
+    EXPECT_EQ(a.section_size[kSectionBounds], 0u);
+    EXPECT_EQ(a.points.point_count, 3u);
+    const uint16_t one = 1;
+    std::memcpy(&bytes[4], &one, 2);
+    st = load_asset_memory(bytes.data(), bytes.size(), &a);
+    EXPECT_EQ(st.error, LoadError::unsupported_version);
+    EXPECT_NE(std::strstr(st.message, "version 1"), nullptr) << st.message;
 }
 
 // Random byte changes with repaired checksums reach every validation path: the loader must

@@ -12,6 +12,8 @@ extern "C" long c_api_blend_height(const char* asset_path, stipple_get_proc_fn g
                                    float weight);
 extern "C" long c_api_render_dark_pixels(const char* asset_path, stipple_get_proc_fn get_proc,
                                          float time, uint32_t* points_drawn);
+extern "C" long c_api_closeup_dark_pixels(const char* asset_path, stipple_get_proc_fn get_proc,
+                                          int refinement_budget);
 
 namespace {
 
@@ -48,6 +50,27 @@ TEST(CApi, BlendsTwoClips) {
     ASSERT_GT(rest, 50) << stipple_last_error();
     // Height 0.5 + 1.5 s: s = 1 -> 2, s = 1.5 -> 2.75.
     EXPECT_NEAR(double(half) / double(rest), 2.75 / 2.0, 0.05);
+    stipple::platform::destroy_headless_context(&context);
+}
+
+// A close-up through the C API: the run-time refinement keeps the tone (issue 7); with the
+// budget set to none the hierarchy runs out and the frame fades.
+TEST(CApi, CloseUpsKeepTheirToneWithRunTimeRefinement) {
+    std::string asset = ::testing::TempDir() + "c_api_cesium_closeup.stip";
+    ASSERT_EQ(run(bin("stipple-bake") + " " + source("assets/CesiumMan/CesiumMan.glb") + " -o " +
+                  asset + " --points 5000 --quiet"),
+              0);
+    stipple::platform::HeadlessContext context;
+    std::string error;
+    ASSERT_TRUE(stipple::platform::create_headless_context({}, &context, &error)) << error;
+    const long refined =
+        c_api_closeup_dark_pixels(asset.c_str(), stipple::platform::proc_loader(context), 0);
+    const long plain =
+        c_api_closeup_dark_pixels(asset.c_str(), stipple::platform::proc_loader(context), -1);
+    std::printf("close-up dark pixels: refined %ld, without refinement %ld\n", refined, plain);
+    ASSERT_GT(refined, 0) << stipple_last_error();
+    EXPECT_GT(refined, 4 * plain);
+    EXPECT_GT(refined, 320 * 240 / 10);  // a tone of 0.3 over most of the frame
     stipple::platform::destroy_headless_context(&context);
 }
 

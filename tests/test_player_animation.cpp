@@ -60,10 +60,11 @@ TEST_F(PlayerAnimation, BlendLayersTwoClipsWithAWeight) {
                   " --clip rest --blend stretch:0.5 --time 1 --frames 1 --zoom 0.5"
                   " --size 200x400 --tone 0 --no-silhouettes --background 808080 --no-apng"),
               0);
+    // The reference blends with weight 0: the rest pose, framed like the blend (both clips).
     std::string ref = dir + "/blend_ref";
     ASSERT_EQ(run(bin("stipple-play") + " " + dir + "/tube.stip --out " + ref +
-                  " --clip rest --frames 1 --zoom 0.5 --size 200x400 --tone 0 --no-silhouettes"
-                  " --background 808080 --no-apng"),
+                  " --clip rest --blend stretch:0 --frames 1 --zoom 0.5 --size 200x400 --tone 0"
+                  " --no-silhouettes --background 808080 --no-apng"),
               0);
     Image blended, rest;
     ASSERT_TRUE(load_png(out + "/frame_0000.png", &blended));

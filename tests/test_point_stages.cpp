@@ -47,34 +47,57 @@ TEST(PointPlacement, BarycentricPointFollowsItsHostTriangle) {
     EXPECT_FLOAT_EQ(pos[1], 0.5f);
 }
 
-TEST(Relevance, RecomputedAsMeanDistanceToNeighboursInCurrentPose) {
-    // Point 0 at the origin with neighbours at distance 1 (x) and 3 (y): radius 2.
-    const float positions[] = {0, 0, 0, 1, 0, 0, 0, 3, 0};
+TEST(Relevance, RegionFollowsTheAreaAroundThePoint) {
+    // Point 0 at the origin with neighbours at (1,0,0), (0,3,0) and (-1,0,0).
+    const float positions[] = {0, 0, 0, 1, 0, 0, 0, 3, 0, -1, 0, 0};
+    const uint32_t offsets[] = {0, 3, 3, 3, 3};
+    const uint32_t neighbours[] = {1, 2, 3};
+    const float fallback[] = {9, 7, 5, 3};
+    float baked[4] = {2, 0, 0, 0};
+    PointsView pv;
+    pv.point_count = 4;
+    pv.neighbour_offsets = offsets;
+    pv.neighbours = neighbours;
+    pv.radius = baked;
+    float scale[4], radius[4];
+    stipple::relevance_scale(pv, positions, scale);
+    EXPECT_FLOAT_EQ(scale[1], 0.0f);  // no neighbours
+    stipple::recompute_relevance(pv, positions, scale, fallback, radius);
+    EXPECT_FLOAT_EQ(radius[0], 2.0f);  // the bind pose gives back the baked radius
+    EXPECT_FLOAT_EQ(radius[1], 7.0f);  // no neighbours: keeps its fallback
+    // Stretch x by 4: the area around point 0 grows 4x, so its region (radius^2) does too.
+    const float stretched[] = {0, 0, 0, 4, 0, 0, 0, 3, 0, -4, 0, 0};
+    stipple::recompute_relevance(pv, stretched, scale, fallback, radius);
+    EXPECT_NEAR(radius[0] * radius[0], 4.0f * 4.0f, 1e-4f);
+    // Stretch x by 2 and squash y by 2: area unchanged, radius unchanged (the mean distance of
+    // Alg. 6.4 as printed would grow by 1.25x here).
+    const float sheared[] = {0, 0, 0, 2, 0, 0, 0, 1.5f, 0, -2, 0, 0};
+    stipple::recompute_relevance(pv, sheared, scale, fallback, radius);
+    EXPECT_NEAR(radius[0], 2.0f, 1e-5f);
+    // Rotating the whole neighbourhood changes nothing.
+    const float turned[] = {0, 0, 0, 0, 1, 0, 0, 0, 3, 0, -1, 0};
+    stipple::recompute_relevance(pv, turned, scale, fallback, radius);
+    EXPECT_NEAR(radius[0], 2.0f, 1e-5f);
+}
+
+TEST(Relevance, CollinearNeighboursUseTheMeanDistance) {
+    // Neighbours on a line span no area: the mean distance (Alg. 6.4) measures the spacing.
+    const float positions[] = {0, 0, 0, 1, 0, 0, -3, 0, 0};
     const uint32_t offsets[] = {0, 2, 2, 2};
     const uint32_t neighbours[] = {1, 2};
     const float fallback[] = {9, 7, 5};
+    float baked[3] = {3, 0, 0};
     PointsView pv;
     pv.point_count = 3;
     pv.neighbour_offsets = offsets;
     pv.neighbours = neighbours;
-    const float one[] = {1, 1, 1};
-    float radius[3];
-    stipple::recompute_relevance(pv, positions, one, fallback, radius);
-    EXPECT_FLOAT_EQ(radius[0], 2.0f);
-    EXPECT_FLOAT_EQ(radius[1], 7.0f);  // no neighbours: keeps its fallback
-    // Stretching x by 4 moves neighbour 1 to distance 4: radius (4 + 3) / 2.
-    const float stretched[] = {0, 0, 0, 4, 0, 0, 0, 3, 0};
-    stipple::recompute_relevance(pv, stretched, one, fallback, radius);
-    EXPECT_FLOAT_EQ(radius[0], 3.5f);
-    // A calibrated baked radius (3 where the bind-pose mean distance is 2) scales with it.
-    float baked[3] = {3, 0, 0};
     pv.radius = baked;
-    float scale[3];
+    float scale[3], radius[3];
     stipple::relevance_scale(pv, positions, scale);
-    EXPECT_FLOAT_EQ(scale[0], 1.5f);
-    EXPECT_FLOAT_EQ(scale[1], 0.0f);
+    EXPECT_FLOAT_EQ(scale[0], -1.5f);  // baked 3 over mean distance 2, marked by the sign
+    const float stretched[] = {0, 0, 0, 2, 0, 0, -6, 0, 0};
     stipple::recompute_relevance(pv, stretched, scale, fallback, radius);
-    EXPECT_FLOAT_EQ(radius[0], 5.25f);
+    EXPECT_FLOAT_EQ(radius[0], 6.0f);
 }
 
 TEST(SmoothPointSize, FollowsAlgorithm32) {
@@ -118,7 +141,9 @@ TEST(SizeStipples, SlopeFactorAndBackFacesAndScreenScale) {
     params.view_projection[1][1] = 0.1f;  // 0.1 NDC per unit -> 0.1 * 480 / 2 = 24 px per unit
     params.eye = glm::vec3(0, 0, 10);
     params.viewport_height = 480;
-    // size_stipples compensates Alg. 3.2's partial dots: tone 0.3 * f(2) targets ratio 0.3.
+    // size_stipples compensates Alg. 3.2's partial dots: tone 0.3 * f(2) targets ratio 0.3
+    // (without the overlap correction, tested on its own below).
+    params.overlap_gain = 0.0f;
     params.constant_tone = 0.3f * stipple::smooth_slope_ink_fraction(2.0f);
     const float positions[] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     const float c60 = 0.5f;  // cos 60 degrees
@@ -140,6 +165,31 @@ TEST(SizeStipples, SlopeFactorAndBackFacesAndScreenScale) {
     stipple::size_stipples(3, positions, normals, radius, params, size);
     EXPECT_FLOAT_EQ(size[0], 3.0f);
     EXPECT_NEAR(size[1], 3.0f, 1e-5);  // ratio 3 > smoothSlope
+}
+
+TEST(SizeStipples, InkCoversOverlapsSoDarkTonesReachDark) {
+    // Ink for tone T is T (1 + g T^p) before the smooth-slope fraction: none at g = 0, almost
+    // none for light tones, more and more toward black.
+    stipple::SizeParams params;
+    const float f = stipple::smooth_slope_ink_fraction(params.smooth_slope);
+    params.overlap_gain = 0.0f;
+    EXPECT_NEAR(stipple::ink_for_tone(params, 0.6f) * f, 0.6f, 1e-6f);
+    params.overlap_gain = 0.46f;
+    params.overlap_power = 2.6f;
+    EXPECT_NEAR(stipple::ink_for_tone(params, 0.1f) * f, 0.1f, 0.001f);
+    EXPECT_NEAR(stipple::ink_for_tone(params, 0.3f) * f, 0.3f * 1.02f, 0.002f);
+    EXPECT_NEAR(stipple::ink_for_tone(params, 0.9f) * f, 0.9f * 1.35f, 0.01f);
+    EXPECT_NEAR(stipple::ink_for_tone(params, 1.0f) * f, 1.46f, 1e-5f);
+    EXPECT_GT(stipple::ink_for_tone(params, 1.0f), stipple::ink_for_tone(params, 0.9f));
+    EXPECT_EQ(stipple::ink_for_tone(params, -1.0f), 0.0f);  // clamped
+    EXPECT_EQ(stipple::ink_for_tone(params, 2.0f), stipple::ink_for_tone(params, 1.0f));
+    // The per-frame table agrees with the formula between its steps.
+    params.constant_tone = -1.0f;
+    const stipple::InkTable table(params);
+    for (float lit : {0.0f, 0.13f, 0.5f, 0.77f, 1.0f}) {
+        const float tone = params.dark_tone + (params.light_tone - params.dark_tone) * lit;
+        EXPECT_NEAR(table.at(lit), stipple::ink_for_tone(params, tone), 2e-3f) << lit;
+    }
 }
 
 }  // namespace

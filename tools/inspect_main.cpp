@@ -14,6 +14,7 @@
 
 #include "bake/point_grid.h"
 #include "runtime/asset.h"
+#include "runtime/asset_format.h"
 #include "runtime/point_placement.h"
 
 namespace {
@@ -166,15 +167,15 @@ int main(int argc, char** argv) {
         return 1;
     }
     const stipple::PointsView& p = a.points;
-    const char* names[stipple::kSectionCount] = {"MESH", "SKIN", "CLIP", "PNTQ", "EDGE", "MRPH"};
     size_t mesh_side = 0;
     for (int s : {stipple::kSectionMesh, stipple::kSectionSkin, stipple::kSectionClips,
-                  stipple::kSectionEdges, stipple::kSectionMorph})
+                  stipple::kSectionEdges, stipple::kSectionMorph, stipple::kSectionBounds,
+                  stipple::kSectionSides})
         mesh_side += a.section_size[s];
     std::printf("{\"asset\": \"%s\", \"version\": %u, \"bytes\": %zu, \"sections\": {", path,
                 a.version, a.file_size);
     for (int s = 0; s < stipple::kSectionCount; ++s)
-        std::printf("%s\"%s\": %zu", s ? ", " : "", names[s], a.section_size[s]);
+        std::printf("%s\"%s\": %zu", s ? ", " : "", stipple::section_name(s), a.section_size[s]);
     std::printf(
         "}, \"vertices\": %u, \"triangles\": %u, \"joints\": %u, \"clips\": %u, "
         "\"morph_targets\": %u, \"points\": %u, \"neighbours_per_point\": %.2f, "
@@ -185,6 +186,27 @@ int main(int argc, char** argv) {
         p.point_count ? double(a.file_size - mesh_side) / p.point_count : 0.0,
         p.point_count ? double(p.radius[0]) : 0.0,
         p.point_count ? double(p.radius[p.point_count - 1]) : 0.0);
+    // Orientation and framing (BNDS) and double-sided triangles (SIDE), format version 3.
+    const stipple::BoundsView& b = a.bounds;
+    std::printf(", \"up\": \"%s\", \"double_sided_triangles\": %u",
+                !b.present ? "unknown" : b.up_axis == stipple::format::kUpZ ? "z" : "y",
+                a.sides.triangle_count);
+    auto box = [](const float* x) {
+        std::printf("{\"min\": [%g, %g, %g], \"max\": [%g, %g, %g]}", double(x[0]), double(x[1]),
+                    double(x[2]), double(x[3]), double(x[4]), double(x[5]));
+    };
+    if (b.present) {
+        std::printf(", \"bounds\": {\"rest\": ");
+        box(b.rest);
+        std::printf(", \"clips\": [");
+        for (uint32_t c = 0; c < a.clip_count; ++c) {
+            std::printf("%s{\"name\": \"%s\", \"duration\": %g, \"box\": ", c ? ", " : "",
+                        a.clips[c].name, double(a.clips[c].duration));
+            box(b.clips + size_t(c) * 6);
+            std::printf("}");
+        }
+        std::printf("]}");
+    }
     if (quality && p.point_count > 1) {
         std::vector<float> pos(size_t(p.point_count) * 3), nrm(size_t(p.point_count) * 3);
         stipple::place_points(p, a.mesh.indices, a.mesh.positions, a.mesh.normals, pos.data(),

@@ -10,7 +10,9 @@
 // The rig: "lower" at the origin, "upper" its child at (0, 0.5, 0). A vertex is bound to lower
 // below y = 0.45, to upper above y = 0.55, and blended linearly in between.
 // Animations: "stretch" scales upper by (1,1,1) -> (1,2,1) -> (1,1,1) at t = 0, 1, 2 s (so the
-// top reaches y = 3.5 at t = 1); "rest" holds scale (1,1,1) so a player can show the bind pose.
+// top reaches y = 3.5 at t = 1); "rest" holds scale (1,1,1) so a player can show the bind pose;
+// "sweep" scales upper along Y linearly from 0.5 to 2.5 over t = 0..2 s (scale = 0.5 + t), for
+// measuring tone across the whole range of stretch (docs/measure.md).
 
 #include <tiny_gltf.h>
 
@@ -66,7 +68,8 @@ void print_usage(std::FILE* out) {
         "usage: make-stretch-tube OUT.gltf [--segments-around N] [--segments-along M]\n"
         "  Writes a skinned closed tube (radius 0.25, y from 0 to 2) with joints \"lower\"\n"
         "  and \"upper\" and animations \"stretch\" (upper scaled 1 -> 2 -> 1 along Y over\n"
-        "  2 s) and \"rest\", as glTF with an embedded buffer.\n"
+        "  2 s), \"rest\" and \"sweep\" (upper scaled 0.5 -> 2.5 along Y over 2 s), as glTF\n"
+        "  with an embedded buffer.\n"
         "  --segments-around N   quads around the tube, 3..%d (default %d)\n"
         "  --segments-along M    quads along the tube, 1..%d (default %d)\n",
         kMaxSegments, kDefaultSegmentsAround, kMaxSegments, kDefaultSegmentsAlong);
@@ -376,6 +379,8 @@ tinygltf::Model build_model(const TubeMesh& mesh) {
     add_scale_animation(&model, "stretch", 1, {0.0f, 1.0f, 2.0f},
                         {glm::vec3(1.0f), glm::vec3(1.0f, 2.0f, 1.0f), glm::vec3(1.0f)});
     add_scale_animation(&model, "rest", 1, {0.0f}, {glm::vec3(1.0f)});
+    add_scale_animation(&model, "sweep", 1, {0.0f, 2.0f},
+                        {glm::vec3(1.0f, 0.5f, 1.0f), glm::vec3(1.0f, 2.5f, 1.0f)});
 
     tinygltf::Scene scene;
     scene.name = "stretch_tube";
@@ -396,8 +401,9 @@ bool reload_matches(const std::string& path, const tinygltf::Model& written, std
         return false;
     }
     if (model.meshes.size() != 1 || model.skins.size() != 1 || model.skins[0].joints.size() != 2 ||
-        model.nodes.size() != written.nodes.size() || model.animations.size() != 2 ||
-        model.animations[0].name != "stretch" || model.animations[1].name != "rest") {
+        model.nodes.size() != written.nodes.size() || model.animations.size() != 3 ||
+        model.animations[0].name != "stretch" || model.animations[1].name != "rest" ||
+        model.animations[2].name != "sweep") {
         *why = "the reloaded scene differs in structure";
         return false;
     }

@@ -30,15 +30,22 @@ const char* kUsage =
     "  --fps F                 frames per second of animation time (default 30)\n"
     "  --time T0               start time in seconds (default 0); clips loop\n"
     "  --size WxH              image size (default 640x480, max 8192x8192)\n"
-    "  --zoom Z                1 = rest-pose bounds fit the view, 2 = twice as large (default 1)\n"
-    "  --yaw DEG, --pitch DEG  camera orbit (default 0, 0: looking down -Z)\n"
+    "  --zoom Z                1 = every pose of the played clip(s) fits the view (no clip:\n"
+    "                          the rest pose), 2 = twice as large (default 1)\n"
+    "  --zoom-to Z2            zoom from Z to Z2 (geometrically) over the frames\n"
+    "  --yaw DEG, --pitch DEG  camera orbit (default 0, 0: looking down -Z); pitch in [-90, 90]\n"
     "  --tone T                constant target tone in [0,1] instead of lighting\n"
     "  --point-size PX         maximum stipple diameter (default 3, in [0.5, 32])\n"
     "  --background RRGGBB     background colour (default ffffff)\n"
     "  --no-relevance-update   keep rest-pose relevance radii (thesis Alg. 6.3 without 6.4)\n"
+    "  --dark-tone T           darkest tone lighting asks for, thesis §8.4 (default 0.6)\n"
+    "  --refinement-budget N   extra points per frame where the baked hierarchy runs out\n"
+    "                          (close-ups, stretch; default 262144, 0 = off, max 4194304)\n"
     "  --no-silhouettes        do not draw silhouette lines\n"
     "  --line-width PX         silhouette line width (default 1, in [0.5, 16])\n"
     "  --dots-out              also write dots_NNNN.csv (id,x,y,size per drawn dot)\n"
+    "  --mask-out              also write mask_NNNN.png: white where the mesh covers the\n"
+    "                          pixel, black elsewhere (the object mask of stipple-measure)\n"
     "  --no-png                do not write per-frame PNGs\n"
     "  --no-apng               do not write anim.png\n"
     "  --stats                 print a JSON object of counts and timings to stdout\n"
@@ -52,11 +59,15 @@ struct Options {
     bool dqs = false;
     long frames = 30;
     double fps = 30, time0 = 0, zoom = 1, yaw = 0, pitch = 0, tone = -1, point_size = 3;
+    double dark_tone = 0.6;
+    double zoom_to = 0;  // > 0: zoom moves geometrically from `zoom` to this over the frames
+    long refinement_budget = 1L << 18;
     int width = 640, height = 480;
     float background[3] = {1, 1, 1};
     double line_width = 1;
     bool silhouettes = true;
     bool relevance_update = true, dots_out = false, png = true, apng = true, stats = false;
+    bool mask_out = false;
 };
 
 stipple::cli::Args* g_args = nullptr;  // for die() outside parse()
@@ -108,10 +119,12 @@ Options parse(stipple::cli::Args& args) {
                 die(std::string("--size must be WxH with 16 <= W, H <= 8192, got '") + s + "'");
         } else if (a == "--zoom") {
             o.zoom = parse_double(a, value(), 0.01, 1000);
+        } else if (a == "--zoom-to") {
+            o.zoom_to = parse_double(a, value(), 0.01, 1000);
         } else if (a == "--yaw") {
             o.yaw = parse_double(a, value(), -3600, 3600);
         } else if (a == "--pitch") {
-            o.pitch = parse_double(a, value(), -89, 89);
+            o.pitch = parse_double(a, value(), -90, 90);
         } else if (a == "--tone") {
             o.tone = parse_double(a, value(), 0, 1);
         } else if (a == "--point-size") {
@@ -124,12 +137,18 @@ Options parse(stipple::cli::Args& args) {
             for (int k = 0; k < 3; ++k) o.background[k] = float((rgb >> (16 - 8 * k)) & 0xFF) / 255;
         } else if (a == "--no-relevance-update") {
             o.relevance_update = false;
+        } else if (a == "--dark-tone") {
+            o.dark_tone = parse_double(a, value(), 0, 1);
+        } else if (a == "--refinement-budget") {
+            o.refinement_budget = long(parse_double(a, value(), 0, 4194304));
         } else if (a == "--no-silhouettes") {
             o.silhouettes = false;
         } else if (a == "--line-width") {
             o.line_width = parse_double(a, value(), 0.5, 16);
         } else if (a == "--dots-out") {
             o.dots_out = true;
+        } else if (a == "--mask-out") {
+            o.mask_out = true;
         } else if (a == "--no-png") {
             o.png = false;
         } else if (a == "--no-apng") {
@@ -159,23 +178,31 @@ std::string frame_path(const Options& o, const char* stem, long frame, const cha
     return o.out + name;
 }
 
-// Writes the dots actually drawn in the last frame: size > 0, inside the image, and not
-// hidden by the mesh (the same depth comparison the GPU makes at the dot's centre pixel).
-bool write_dots(const stipple::Pipeline& p, const float* depth, const std::string& path) {
+// Writes the dots the last frame shows (stipple::pipeline_visible_dots) as CSV.
+bool write_dots(const stipple::Pipeline& p, const float* depth, stipple::VisibleDot* scratch,
+                const std::string& path) {
     FILE* f = std::fopen(path.c_str(), "w");
     if (!f) return false;
     std::fputs("id,x,y,size\n", f);
-    const int w = p.config.width, h = p.config.height;
-    for (uint32_t i = 0; i < p.asset->points.point_count; ++i) {
-        if (p.size[i] <= 0.0f) continue;
-        glm::vec3 s = stipple::pipeline_project(p, i);
-        int px = int(std::floor(s.x)), py = int(std::floor(s.y));
-        if (px < 0 || py < 0 || px >= w || py >= h) continue;
-        float mesh_depth = depth[size_t(h - 1 - py) * size_t(w) + size_t(px)];
-        if (mesh_depth >= 1.0f || s.z > mesh_depth + 1e-5f) continue;  // off the object or hidden
-        std::fprintf(f, "%u,%.2f,%.2f,%.3f\n", i, double(s.x), double(s.y), double(p.size[i]));
-    }
+    const uint32_t n = stipple::pipeline_visible_dots(p, depth, scratch, p.point_capacity);
+    for (uint32_t i = 0; i < n; ++i)
+        std::fprintf(f, "%llu,%.2f,%.2f,%.3f\n", static_cast<unsigned long long>(scratch[i].id),
+                     double(scratch[i].x), double(scratch[i].y), double(scratch[i].size));
     return std::fclose(f) == 0;
+}
+
+// Writes the object mask of the last frame from the mesh pass's depth (bottom row first, 1 =
+// background): white where depth < 1, black elsewhere, top row first like the frame PNGs.
+// `rgba` is scratch of width * height * 4 bytes.
+bool write_mask(const float* depth, int w, int h, uint8_t* rgba, const std::string& path,
+                std::string* error) {
+    const size_t pixels = size_t(w) * size_t(h);
+    for (size_t i = 0; i < pixels; ++i) {
+        const uint8_t v = depth[i] < 1.0f ? 255 : 0;
+        rgba[i * 4] = rgba[i * 4 + 1] = rgba[i * 4 + 2] = v;
+        rgba[i * 4 + 3] = 255;
+    }
+    return stipple::image::write_png(path.c_str(), w, h, rgba, /*bottom_up=*/true, error);
 }
 
 }  // namespace
@@ -220,11 +247,15 @@ int main(int argc, char** argv) {
     pc.zoom = float(o.zoom);
     pc.yaw_degrees = float(o.yaw);
     pc.pitch_degrees = float(o.pitch);
+    pc.frame_clip = clip;  // zoom 1 frames every pose of the clips played
+    pc.frame_blend_clip = second;
     pc.relevance_update = o.relevance_update;
+    pc.dark_tone = float(o.dark_tone);
+    pc.refinement_budget = uint32_t(o.refinement_budget);
     pc.constant_tone = float(o.tone);
     pc.max_point_size = float(o.point_size);
     pc.silhouettes = o.silhouettes;
-    pc.depth_readback = o.dots_out;
+    pc.depth_readback = o.dots_out || o.mask_out;
     pc.skinning = o.dqs ? stipple::anim::Skinning::dqs : stipple::anim::Skinning::lbs;
     pc.line_width = float(o.line_width);
     std::memcpy(pc.background, o.background, sizeof(pc.background));
@@ -236,10 +267,14 @@ int main(int argc, char** argv) {
     const size_t pixels = size_t(o.width) * size_t(o.height);
     std::unique_ptr<uint8_t[]> rgba(new uint8_t[pixels * 4]);
     std::unique_ptr<float[]> depth_scratch, depth;
-    if (o.dots_out) {
+    std::unique_ptr<stipple::VisibleDot[]> dot_scratch;
+    std::unique_ptr<uint8_t[]> mask_rgba;
+    if (o.dots_out || o.mask_out) {
         depth_scratch.reset(new float[pixels * 4]);
         depth.reset(new float[pixels]);
+        if (o.dots_out) dot_scratch.reset(new stipple::VisibleDot[pipeline->point_capacity]);
     }
+    if (o.mask_out) mask_rgba.reset(new uint8_t[pixels * 4]);
     stipple::image::ApngWriter apng;
     int fps_num = int(std::lround(o.fps * 1000)), fps_den = 1000;
     while (fps_num > 65535) fps_num /= 10, fps_den /= 10;
@@ -247,7 +282,7 @@ int main(int argc, char** argv) {
         die(error);
 
     stipple::StageTimes times;
-    double frame_ms = 0, drawn = 0;
+    double frame_ms = 0, drawn = 0, refined = 0, budget_scale = 1;
     for (long f = 0; f < o.frames; ++f) {
         // Clips loop (the sampler wraps the time); a crossfade starts CLIP2 at its time 0.
         const double elapsed = double(f) / o.fps;
@@ -260,6 +295,11 @@ int main(int argc, char** argv) {
             float(o.mix == Options::Mix::crossfade ? std::min(elapsed / o.mix_amount, 1.0)
                                                    : o.mix_amount);
         auto start = std::chrono::steady_clock::now();
+        if (o.zoom_to > 0 && o.frames > 1) {
+            stipple::PipelineConfig view = pipeline->config;
+            view.zoom = float(o.zoom * std::pow(o.zoom_to / o.zoom, double(f) / double(o.frames - 1)));
+            stipple::pipeline_set_view(pipeline.get(), view);
+        }
         stipple::pipeline_frame(pipeline.get(), state, &times);
         auto readback_start = std::chrono::steady_clock::now();
         stipple::renderer_read_color(&pipeline->renderer, rgba.get());
@@ -267,15 +307,20 @@ int main(int argc, char** argv) {
         times.readback += std::chrono::duration<double, std::milli>(end - readback_start).count();
         frame_ms += std::chrono::duration<double, std::milli>(end - start).count();
         drawn += pipeline->points_drawn;
+        refined += pipeline->refined_count;
+        budget_scale = std::min(budget_scale, double(pipeline->refinement_stats.budget_scale));
         if (o.png && !stipple::image::write_png(frame_path(o, "frame", f, "png").c_str(), o.width,
                                                 o.height, rgba.get(), true, &error))
             die(error);
         if (o.apng && !apng.add_frame(o.width, o.height, rgba.get(), true, &error)) die(error);
-        if (o.dots_out) {
+        if (o.dots_out || o.mask_out)
             stipple::renderer_read_depth(&pipeline->renderer, depth_scratch.get(), depth.get());
-            if (!write_dots(*pipeline, depth.get(), frame_path(o, "dots", f, "csv")))
-                die("cannot write dots file in '" + o.out + "'");
-        }
+        if (o.dots_out &&
+            !write_dots(*pipeline, depth.get(), dot_scratch.get(), frame_path(o, "dots", f, "csv")))
+            die("cannot write dots file in '" + o.out + "'");
+        if (o.mask_out && !write_mask(depth.get(), o.width, o.height, mask_rgba.get(),
+                                      frame_path(o, "mask", f, "png"), &error))
+            die(error);
     }
     if (o.apng && !apng.finish(&error)) die(error);
 
@@ -284,13 +329,15 @@ int main(int argc, char** argv) {
         std::printf(
             "{\"asset\": \"%s\", \"backend\": \"%s\", \"renderer\": \"%s\", \"clip\": \"%s\", "
             "\"frames\": %ld, \"width\": %d, \"height\": %d, \"points_total\": %u, "
-            "\"points_drawn\": %.1f, \"ms_per_frame\": %.3f, \"ms_per_stage\": {\"sample\": %.3f, "
-            "\"skin\": %.3f, \"place\": %.3f, \"relevance\": %.3f, \"size\": %.3f, "
+            "\"points_drawn\": %.1f, \"points_refined\": %.1f, \"refinement_budget_scale\": %.3f, "
+            "\"ms_per_frame\": %.3f, \"ms_per_stage\": {\"sample\": %.3f, "
+            "\"skin\": %.3f, \"place\": %.3f, \"relevance\": %.3f, \"refine\": %.3f, \"size\": %.3f, "
             "\"silhouette\": %.3f, \"draw\": %.3f, \"readback\": %.3f}}\n",
             o.asset.c_str(), stipple::platform::backend_name(context.backend),
             context.renderer.c_str(), clip >= 0 ? asset.clips[clip].name : "(rest pose)", o.frames,
-            o.width, o.height, asset.points.point_count, drawn / n, frame_ms / n, times.sample / n,
-            times.skin / n, times.place / n, times.relevance / n, times.size / n,
+            o.width, o.height, asset.points.point_count, drawn / n, refined / n, budget_scale,
+            frame_ms / n, times.sample / n, times.skin / n, times.place / n, times.relevance / n,
+            times.refine / n, times.size / n,
             times.silhouette / n, times.draw / n, times.readback / n);
     }
     stipple::pipeline_destroy(pipeline.get());

@@ -1,0 +1,147 @@
+#include "bake/scene_bounds.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "anim/anim.h"
+#include "bake/raw_anim_view.h"
+
+namespace stipple::bake {
+
+namespace {
+
+void box_of(const float* positions, size_t vertex_count, float* box) {
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < vertex_count; ++i)
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], positions[i * 3 + size_t(k)]);
+            hi[k] = std::max(hi[k], positions[i * 3 + size_t(k)]);
+        }
+    for (int k = 0; k < 3; ++k) {
+        box[k] = vertex_count ? lo[k] : 0.0f;
+        box[k + 3] = vertex_count ? hi[k] : 0.0f;
+    }
+}
+
+void grow(float* box, const float* other) {
+    for (int k = 0; k < 3; ++k) {
+        box[k] = std::min(box[k], other[k]);
+        box[k + 3] = std::max(box[k + 3], other[k + 3]);
+    }
+}
+
+std::vector<float> sample_times(const anim::Clip& clip, const BoundsConfig& config) {
+    std::vector<float> t;
+    const float duration = std::isfinite(clip.duration) ? std::max(clip.duration, 0.0f) : 0.0f;
+    const size_t uniform =
+        size_t(std::ceil(double(duration) * double(config.samples_per_second))) + 1;
+    const size_t steps = std::min(std::max<size_t>(uniform, 2), config.max_samples_per_clip);
+    for (size_t i = 0; i < steps; ++i) t.push_back(duration * float(i) / float(steps - 1));
+    for (uint32_t c = 0; c < clip.channel_count; ++c)
+        t.insert(t.end(), clip.channels[c].times,
+                 clip.channels[c].times + clip.channels[c].key_count);
+    std::sort(t.begin(), t.end());
+    t.erase(std::unique(t.begin(), t.end()), t.end());
+    if (t.size() > config.max_samples_per_clip) {
+        std::vector<float> thin;
+        const size_t n = config.max_samples_per_clip;
+        for (size_t i = 0; i < n; ++i) thin.push_back(t[i * (t.size() - 1) / (n - 1)]);
+        t.swap(thin);
+    }
+    return t;
+}
+
+}  // namespace
+
+SceneBounds compute_scene_bounds(const RawScene& scene, const BoundsConfig& config) {
+    SceneBounds out;
+    const size_t vertex_count = scene.vertex_count();
+    if (!scene.animated()) {
+        box_of(scene.positions.data(), vertex_count, out.rest);
+        out.clips.assign(scene.clips.size() * 6, 0.0f);
+        for (size_t c = 0; c < scene.clips.size(); ++c)
+            std::copy(out.rest, out.rest + 6, out.clips.begin() + long(c) * 6);
+        return out;
+    }
+    RawAnimView view;
+    make_anim_view(scene, &view);
+    const anim::Skeleton& k = view.skeleton;
+    const uint32_t slots = view.morph.weight_count;
+    std::vector<anim::Trs> locals(k.node_count);
+    std::vector<glm::mat4> models(k.node_count), skin(k.joint_count);
+    std::vector<float> weights(slots + 1), morphed(vertex_count * 3),
+        morphed_normals(vertex_count * 3);
+    std::vector<float> skinned(vertex_count * 3), skinned_normals(vertex_count * 3);
+    uint32_t max_channels = 1;
+    for (const anim::Clip& c : view.clips) max_channels = std::max(max_channels, c.channel_count);
+    std::vector<uint32_t> cursors(max_channels);
+    anim::SamplingContext context;
+    context.cursors = {cursors.data(), cursors.size()};
+
+    // Morph, skin and box the pose in `locals` / `weights`.
+    auto pose_box = [&](float* box) {
+        anim::local_to_model(k, locals.data(), models.data());
+        anim::joint_matrices(k, models.data(), skin.data());
+        const size_t floats = vertex_count * 3;
+        anim::Span<const float> in_p(scene.positions.data(), floats),
+            in_n(scene.normals.data(), floats);
+        if (!view.morph_targets.empty()) {
+            anim::MorphJob morph;
+            morph.morph = &view.morph;
+            morph.vertex_count = uint32_t(vertex_count);
+            morph.weights = {weights.data(), slots};
+            morph.in_positions = in_p;
+            morph.in_normals = in_n;
+            morph.out_positions = {morphed.data(), floats};
+            morph.out_normals = {morphed_normals.data(), floats};
+            if (morph.run()) {
+                in_p = {morphed.data(), floats};
+                in_n = {morphed_normals.data(), floats};
+            }
+        }
+        anim::SkinningJob job;
+        job.vertex_count = uint32_t(vertex_count);
+        job.joint_matrices = {skin.data(), skin.size()};
+        job.joints = {scene.joints.data(), scene.joints.size()};
+        job.weights = {scene.weights.data(), scene.weights.size()};
+        job.in_positions = in_p;
+        job.in_normals = in_n;
+        job.out_positions = {skinned.data(), floats};
+        job.out_normals = {skinned_normals.data(), floats};
+        if (!job.run()) std::copy(in_p.data, in_p.data + floats, skinned.begin());
+        box_of(skinned.data(), vertex_count, box);
+    };
+
+    anim::rest_pose(k, locals.data());
+    for (uint32_t i = 0; i < slots; ++i) weights[i] = view.morph.default_weights[i];
+    pose_box(out.rest);
+    out.clips.assign(view.clips.size() * 6, 0.0f);
+    for (size_t c = 0; c < view.clips.size(); ++c) {
+        float* box = out.clips.data() + c * 6;
+        bool first = true;
+        for (float t : sample_times(view.clips[c], config)) {
+            anim::SamplingJob job;
+            job.skeleton = &k;
+            job.clip = &view.clips[c];
+            job.time = t;
+            job.wrap = anim::Wrap::clamp;  // the last key too (looping would sample 0 there)
+            job.context = &context;
+            job.locals = {locals.data(), locals.size()};
+            job.morph_weights = {weights.data(), slots};
+            job.default_morph_weights = {view.morph.default_weights, slots};
+            if (!job.run()) continue;
+            float pose[6];
+            pose_box(pose);
+            if (first)
+                std::copy(pose, pose + 6, box);
+            else
+                grow(box, pose);
+            first = false;
+        }
+        if (first) std::copy(out.rest, out.rest + 6, box);
+    }
+    return out;
+}
+
+}  // namespace stipple::bake

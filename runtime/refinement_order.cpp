@@ -1,0 +1,163 @@
+#include "runtime/refinement_order.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <new>
+
+#include <glm/glm.hpp>
+
+namespace stipple {
+
+namespace {
+
+template <typename T>
+std::unique_ptr<T[]> array(size_t n) {
+    return std::unique_ptr<T[]>(new (std::nothrow) T[n > 0 ? n : 1]);
+}
+
+glm::vec3 point3(const float* p, uint32_t i) { return glm::vec3(p[i * 3], p[i * 3 + 1], p[i * 3 + 2]); }
+
+// Uniform grid over 3D points, hashed into buckets (counting sort, no per-cell allocation).
+struct Grid {
+    float cell = 1.0f;
+    uint32_t mask = 0;                    // bucket count - 1
+    std::unique_ptr<uint32_t[]> start;    // bucket -> first slot, bucket count + 1
+    std::unique_ptr<uint32_t[]> items;    // point indices sorted by bucket
+    const float* points = nullptr;
+
+    glm::ivec3 at(const glm::vec3& p) const { return glm::ivec3(glm::floor(p / cell)); }
+    uint32_t bucket(const glm::ivec3& c) const {
+        return (uint32_t(c.x) * 73856093u ^ uint32_t(c.y) * 19349663u ^ uint32_t(c.z) * 83492791u) & mask;
+    }
+    // Indexes the points i with use[i] (or all if use is null).
+    bool build(const float* p, uint32_t n, float cell_size, const float* use) {
+        points = p;
+        cell = cell_size;
+        uint32_t buckets = 1;
+        while (buckets < 2 * n && buckets < (1u << 30)) buckets <<= 1;
+        mask = buckets - 1;
+        start = array<uint32_t>(size_t(buckets) + 1);
+        items = array<uint32_t>(n);
+        std::unique_ptr<uint32_t[]> of = array<uint32_t>(n);
+        if (!start || !items || !of) return false;
+        std::fill(start.get(), start.get() + buckets + 1, 0u);
+        for (uint32_t i = 0; i < n; ++i) {
+            of[i] = bucket(at(point3(p, i)));
+            if (!use || use[i] > 0.0f) ++start[of[i] + 1];
+        }
+        for (uint32_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
+        std::unique_ptr<uint32_t[]> fill = array<uint32_t>(buckets);
+        if (!fill) return false;
+        std::copy(start.get(), start.get() + buckets, fill.get());
+        for (uint32_t i = 0; i < n; ++i)
+            if (!use || use[i] > 0.0f) items[fill[of[i]]++] = i;
+        return true;
+    }
+    // Calls f(index) for the points in the cells overlapping the cube of half-size r at p
+    // (and possibly a few others that share their buckets).
+    template <typename F>
+    void near(const glm::vec3& p, float r, F f) const {
+        const glm::ivec3 lo = at(p - glm::vec3(r)), hi = at(p + glm::vec3(r));
+        for (int z = lo.z; z <= hi.z; ++z)
+            for (int y = lo.y; y <= hi.y; ++y)
+                for (int x = lo.x; x <= hi.x; ++x) {
+                    const glm::ivec3 c(x, y, z);
+                    const uint32_t b = bucket(c);
+                    for (uint32_t k = start[b]; k < start[b + 1]; ++k)
+                        if (at(point3(points, items[k])) == c) f(items[k]);
+                }
+    }
+};
+
+// Max-heap of triangles keyed by dist, with decrease-key.
+struct Heap {
+    uint32_t size = 0;
+    std::unique_ptr<uint32_t[]> item, slot;  // slot[t] = position of t, or ~0u
+    const float* key = nullptr;
+
+    void swap(uint32_t a, uint32_t b) {
+        std::swap(item[a], item[b]);
+        slot[item[a]] = a;
+        slot[item[b]] = b;
+    }
+    void up(uint32_t i) {
+        while (i > 0 && key[item[(i - 1) / 2]] < key[item[i]]) swap(i, (i - 1) / 2), i = (i - 1) / 2;
+    }
+    void down(uint32_t i) {
+        for (;;) {
+            uint32_t l = 2 * i + 1, r = l + 1, m = i;
+            if (l < size && key[item[l]] > key[item[m]]) m = l;
+            if (r < size && key[item[r]] > key[item[m]]) m = r;
+            if (m == i) return;
+            swap(i, m);
+            i = m;
+        }
+    }
+    void push(uint32_t t) {
+        item[size] = t;
+        slot[t] = size;
+        up(size++);
+    }
+    uint32_t pop() {
+        const uint32_t t = item[0];
+        swap(0, --size);
+        slot[t] = ~0u;
+        down(0);
+        return t;
+    }
+};
+
+}  // namespace
+
+bool first_point_phases(uint32_t triangle_count, const float* first_points, const float* area,
+                        uint32_t baked_count, const float* baked, float* phase) {
+    const uint32_t n = triangle_count;
+    if (n == 0) return true;
+    double total_area = 0.0;
+    for (uint32_t t = 0; t < n; ++t) total_area += std::max(area[t], 0.0f);
+    uint32_t rank = 0;
+    if (total_area > 0.0) {
+        // Cell size ~ the spacing of baked points and triangles together; distances beyond a
+        // few cells are clamped (such holes come first whatever their exact size).
+        const float spacing = float(std::sqrt(total_area / double(baked_count + n)));
+        const float reach = 3.0f * spacing;
+        Grid baked_grid, tri_grid;
+        std::unique_ptr<float[]> dist = array<float>(n);
+        Heap heap;
+        heap.item = array<uint32_t>(n);
+        heap.slot = array<uint32_t>(n);
+        heap.key = dist.get();
+        if (!dist || !heap.item || !heap.slot || !baked_grid.build(baked, baked_count, spacing, nullptr) ||
+            !tri_grid.build(first_points, n, spacing, area))
+            return false;
+        for (uint32_t t = 0; t < n; ++t) {
+            heap.slot[t] = ~0u;
+            dist[t] = reach;
+            if (!(area[t] > 0.0f)) continue;
+            const glm::vec3 p = point3(first_points, t);
+            float& d = dist[t];
+            baked_grid.near(p, reach, [&](uint32_t i) { d = std::min(d, glm::length(point3(baked, i) - p)); });
+            heap.push(t);
+        }
+        while (heap.size > 0) {
+            const uint32_t t = heap.pop();
+            phase[t] = (float(rank++) + 0.5f) / float(n);
+            const glm::vec3 p = point3(first_points, t);
+            tri_grid.near(p, dist[t], [&](uint32_t u) {
+                if (heap.slot[u] == ~0u) return;  // ranked already
+                const float d = glm::length(point3(first_points, u) - p);
+                if (d < dist[u]) {
+                    dist[u] = d;
+                    heap.down(heap.slot[u]);
+                }
+            });
+        }
+    }
+    // Degenerate triangles (never refined) rank last.
+    for (uint32_t t = 0; t < n; ++t)
+        if (!(area[t] > 0.0f) || total_area <= 0.0) phase[t] = (float(rank++) + 0.5f) / float(n);
+    return true;
+}
+
+}  // namespace stipple
