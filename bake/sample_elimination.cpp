@@ -4,10 +4,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
+#include <cstdlib>
 
 #include "bake/bake_random.h"
 #include "bake/level_order.h"
 #include "bake/point_grid.h"
+#include "bake/silhouette_edges.h"
+#include "runtime/asset_format.h"
 
 namespace stipple::bake {
 
@@ -65,12 +69,18 @@ struct Samples {
     std::vector<double> xyz;  // 3 per sample
     std::vector<uint32_t> host;
     std::vector<float> u, v;  // barycentric weights of the host's 1st and 2nd corner
+    // 1: a sample of the surface continued across its boundary (add_ghosts), never a point.
+    std::vector<uint8_t> ghost;
     uint32_t size() const { return uint32_t(host.size()); }
+    uint32_t reals() const {
+        return size() - uint32_t(std::count(ghost.begin(), ghost.end(), uint8_t(1)));
+    }
     void reserve(size_t n) {
         xyz.reserve(n * 3);
         host.reserve(n);
         u.reserve(n);
         v.reserve(n);
+        ghost.reserve(n);
     }
     void push(const Samples& from, uint32_t i) {
         xyz.insert(xyz.end(), from.xyz.begin() + std::ptrdiff_t(i) * 3,
@@ -78,6 +88,7 @@ struct Samples {
         host.push_back(from.host[i]);
         u.push_back(from.u[i]);
         v.push_back(from.v[i]);
+        ghost.push_back(from.ghost[i]);
     }
     // Keeps sample order[k] at k (order: a permutation of a subset).
     void select(const std::vector<uint32_t>& order) {
@@ -110,9 +121,181 @@ Samples sample_surface(const Triangles& t, uint64_t count, Rng* rng) {
             c.host.push_back(f);
             c.u.push_back(float(a));
             c.v.push_back(float(b));
+            c.ghost.push_back(0);
         }
     }
     return c;
+}
+
+// Open surfaces. Where a surface ends, its samples have fewer neighbours, weigh less and
+// outlive the others: every prefix is denser along the boundary (SimpleSkin, a plane, at
+// 20k points: 1.5-1.7x the mean density within half a spacing of its border). Yuksel 2015
+// notes this for bounded domains; here the surface is continued across its boundary, as far
+// as `width`, by a mirror image of itself sampled independently ("ghosts"): the samples
+// near a boundary then have the neighbours they would have if the surface went on, and the
+// ghosts are eliminated like the others but never become points. Mirroring the real samples
+// themselves instead is not enough: a sample near the edge sees its neighbours' images,
+// but not its own, and the images of the samples on the edge lie on them, so the edge stays
+// the most favoured place (measured, docs/hierarchy.md).
+//
+// The boundary: the edges of one face once the input is welded by position
+// (bake/silhouette_edges.h, so UV and normal seams are not edges of one face). Each has the
+// unit direction in its face's plane, perpendicular to the edge, pointing away from the
+// face: the normal of the plane the surface near it is mirrored across. Degenerate faces'
+// edges are left out (no direction; they have no samples).
+struct Boundary {
+    std::vector<Vec3> a, b, out, face_normal;
+    double length = 0;
+    uint32_t size() const { return uint32_t(a.size()); }
+};
+
+Boundary boundary_of(const RawScene& s, const Triangles& t) {
+    Boundary e;
+    const std::vector<uint32_t> edges = silhouette_edges(s);
+    for (size_t k = 0; k < edges.size(); k += 4) {
+        if (edges[k + 3] != format::kNoFace) continue;
+        const uint32_t f = edges[k + 2];
+        const Vec3 n = t.normal[f];
+        if (!(n.sqrnorm() > 0)) continue;
+        const float* pa = &s.positions[size_t(edges[k]) * 3];
+        const float* pb = &s.positions[size_t(edges[k + 1]) * 3];
+        const Vec3 a(pa[0], pa[1], pa[2]), b(pb[0], pb[1], pb[2]);
+        Vec3 out = (b - a) % n;
+        if (!(out.norm() > 0)) continue;
+        out /= out.norm();
+        const Vec3* c = &t.corner[size_t(f) * 3];
+        if ((out | ((c[0] + c[1] + c[2]) / 3 - a)) > 0) out = -out;
+        e.a.push_back(a);
+        e.b.push_back(b);
+        e.out.push_back(out);
+        e.face_normal.push_back(n);
+        e.length += (b - a).norm();
+    }
+    return e;
+}
+
+constexpr uint32_t kNoEdge = 0xFFFFFFFFu;
+
+// Appends to *s the ghosts of the boundary: samples at `density` per unit area, uniform on
+// the triangles within `width` of a boundary edge (the same systematic sampling as the
+// surface's, with its own random numbers), each mirrored across the plane of its nearest
+// boundary edge (on its side of the surface: normals less than ~120 degrees apart; and within
+// 45 degrees of the edge's face's inward direction, so that another part passing near an
+// edge is not mirrored). A ghost is dropped where a real sample lies beyond the plane nearer
+// to it than the plane is: there the surface goes on (a crack, a part that meets another, a
+// concave corner, the far side of a small hole), and the mirror image would lie on it.
+void add_ghosts(const Triangles& t, const Boundary& edges, double density, double width,
+                Rng* rng, Samples* s) {
+    if (edges.size() == 0 || !(width > 0)) return;
+    // The edges cut into pieces at most width / 2 long, in a grid of cell `width`.
+    std::vector<double> piece_xyz;
+    std::vector<uint32_t> piece_edge, first_piece(size_t(edges.size()) + 1, 0);
+    for (uint32_t e = 0; e < edges.size(); ++e) {
+        const Vec3 ab = edges.b[e] - edges.a[e];
+        const uint32_t k = uint32_t(std::max(1.0, std::ceil(ab.norm() / (0.5 * width))));
+        for (uint32_t q = 0; q < k; ++q) {
+            const Vec3 c = edges.a[e] + ab * ((q + 0.5) / k);
+            piece_xyz.insert(piece_xyz.end(), {c[0], c[1], c[2]});
+            piece_edge.push_back(e);
+        }
+        first_piece[e + 1] = uint32_t(piece_edge.size());
+    }
+    PointGrid pieces;
+    pieces.build(piece_xyz.data(), uint32_t(piece_edge.size()), width);
+    auto segment_point = [&](uint32_t e, const Vec3& p, double* h) {
+        const Vec3 ab = edges.b[e] - edges.a[e];
+        const double len2 = ab.sqrnorm();
+        *h = len2 > 0 ? std::clamp(((p - edges.a[e]) | ab) / len2, 0.0, 1.0) : 0.0;
+        return edges.a[e] + ab * *h;
+    };
+    // Triangles within `width` of an edge: by their centroid, or larger than `width`.
+    std::vector<char> near(t.area.size(), 0);
+    for (uint32_t f = 0; f < uint32_t(t.area.size()); ++f) {
+        if (!(t.area[f] > 0)) continue;
+        const Vec3* c = &t.corner[size_t(f) * 3];
+        const Vec3 centre = (c[0] + c[1] + c[2]) / 3;
+        const double radius = std::max({(c[0] - centre).norm(), (c[1] - centre).norm(),
+                                        (c[2] - centre).norm()});
+        if (radius > width) {
+            near[f] = 1;
+            continue;
+        }
+        const double q[3] = {centre[0], centre[1], centre[2]}, reach = width + radius;
+        pieces.visit(q, 3, [&](uint32_t k) {
+            double h;
+            if (!near[f] && (segment_point(piece_edge[k], centre, &h) - centre).sqrnorm() <=
+                                reach * reach)
+                near[f] = 1;
+        });
+    }
+    // Real samples beyond each piece's plane, near enough to hide one of its ghosts.
+    PointGrid reals;
+    const uint32_t n = s->size();
+    reals.build(s->xyz.data(), n, 1.25 * width);
+    std::vector<uint32_t> beyond_first(piece_edge.size() + 1, 0), beyond;
+    for (uint32_t k = 0; k < uint32_t(piece_edge.size()); ++k) {
+        const uint32_t e = piece_edge[k];
+        const Vec3 mid(piece_xyz[size_t(k) * 3], piece_xyz[size_t(k) * 3 + 1],
+                       piece_xyz[size_t(k) * 3 + 2]);
+        reals.visit(&piece_xyz[size_t(k) * 3], 2, [&](uint32_t i) {
+            const Vec3 r(s->xyz[size_t(i) * 3], s->xyz[size_t(i) * 3 + 1], s->xyz[size_t(i) * 3 + 2]);
+            if (((r - edges.a[e]) | edges.out[e]) > 1e-9 * width &&
+                (t.normal[s->host[i]] | edges.face_normal[e]) > kSameSideDot &&
+                (r - mid).sqrnorm() <= 4.5 * width * width)
+                beyond.push_back(i);
+        });
+        beyond_first[k + 1] = uint32_t(beyond.size());
+    }
+    // The sources: systematic sampling over the near triangles, then mirrored.
+    const double offset = rng->uniform();
+    double running = 0;
+    uint64_t made = 0;
+    for (uint32_t f = 0; f < uint32_t(t.area.size()); ++f) {
+        if (!near[f]) continue;
+        running += t.area[f] * density;
+        const uint64_t upto = uint64_t(std::floor(running + offset));
+        const Vec3* corner = &t.corner[size_t(f) * 3];
+        for (; made < upto; ++made) {
+            const double r1 = std::sqrt(rng->uniform()), r2 = rng->uniform();
+            const double a = 1 - r1, b = r1 * (1 - r2);
+            const Vec3 p = corner[0] * a + corner[1] * b + corner[2] * (1 - a - b);
+            uint32_t best = kNoEdge;
+            double best_d2 = width * width, best_h = 0;
+            const double q[3] = {p[0], p[1], p[2]};
+            pieces.visit(q, 2, [&](uint32_t k) {
+                const uint32_t e = piece_edge[k];
+                if ((t.normal[f] | edges.face_normal[e]) <= kSameSideDot) return;
+                double h;
+                const Vec3 v = p - segment_point(e, p, &h);
+                const double d2 = v.sqrnorm();
+                if (d2 > best_d2 || (d2 == best_d2 && e >= best)) return;
+                if (-(v | edges.out[e]) + 1e-9 * width < std::fabs(v | edges.face_normal[e]))
+                    return;  // not on the surface this edge bounds
+                best = e;
+                best_d2 = d2;
+                best_h = h;
+            });
+            if (best == kNoEdge) continue;
+            const double depth = -((p - edges.a[best]) | edges.out[best]);
+            const Vec3 g = p + edges.out[best] * (2 * depth);
+            const uint32_t pieces_of_edge = first_piece[best + 1] - first_piece[best];
+            const uint32_t k = first_piece[best] +
+                               std::min(pieces_of_edge - 1, uint32_t(best_h * pieces_of_edge));
+            bool hidden = false;
+            for (uint32_t j = beyond_first[k]; j < beyond_first[k + 1] && !hidden; ++j) {
+                const uint32_t i = beyond[j];
+                const Vec3 r(s->xyz[size_t(i) * 3], s->xyz[size_t(i) * 3 + 1],
+                             s->xyz[size_t(i) * 3 + 2]);
+                hidden = (r - g).sqrnorm() < depth * depth;
+            }
+            if (hidden) continue;
+            s->xyz.insert(s->xyz.end(), {g[0], g[1], g[2]});
+            s->host.push_back(f);
+            s->u.push_back(float(a));
+            s->v.push_back(float(b));
+            s->ghost.push_back(1);
+        }
+    }
 }
 
 // Max-heap of samples by weight (ties: the higher index first, so the result does not
@@ -221,12 +404,12 @@ void sort_by_cell(double cell, Samples* s) {
 // order they went. Reports progress as phase "eliminate" going from `from` to `to`.
 void eliminate(const Triangles& t, double area, uint32_t target, Samples* s, Samples* gone,
                const HierarchyConfig& config, float from, float to) {
-    const uint32_t n = s->size();
-    if (n <= target) return;
+    const uint32_t n = s->size(), reals = s->reals();
+    if (reals <= target) return;
     config.report("eliminate", from);
     const double r_max = std::sqrt(area / (2 * std::sqrt(3.0) * double(target)));
     const double d_max = 2 * r_max;
-    const double d_min = d_max * (1 - std::pow(double(target) / double(n), kGamma)) * kBeta;
+    const double d_min = d_max * (1 - std::pow(double(target) / double(reals), kGamma)) * kBeta;
     sort_by_cell(d_max, s);
     const double* xyz = s->xyz.data();
     const uint32_t* host = s->host.data();
@@ -274,15 +457,19 @@ void eliminate(const Triangles& t, double area, uint32_t target, Samples* s, Sam
     }
     std::vector<char> alive(n, 1);
     std::vector<uint32_t> went;
-    went.reserve(n - target);
+    went.reserve(reals - target);
     WeightHeap heap(weight);
     std::vector<double>().swap(weight);
-    for (uint32_t left = n; left > target; --left) {
+    const uint8_t* ghost = s->ghost.data();
+    for (uint32_t left = reals; left > target;) {
         if ((left & 0xFFFF) == 0)
-            config.report("eliminate", from + (to - from) * float(n - left) / float(n - target));
+            config.report("eliminate", from + (to - from) * float(reals - left) / float(reals - target));
         const uint32_t i = heap.pop();
         alive[i] = 0;
-        went.push_back(i);
+        if (!ghost[i]) {  // ghosts go like the others, but are not part of the order
+            went.push_back(i);
+            --left;
+        }
         for (uint32_t k = near_offsets[i]; k < near_offsets[i + 1]; ++k) {
             const uint32_t j = near[k];
             if (alive[j]) heap.lower(j, weight_between(i, j));
@@ -293,10 +480,21 @@ void eliminate(const Triangles& t, double area, uint32_t target, Samples* s, Sam
         for (uint32_t i : went) gone->push(*s, i);
     }
     std::vector<uint32_t> kept;
-    kept.reserve(target);
+    kept.reserve(n - (reals - target));
     for (uint32_t i = 0; i < n; ++i)
         if (alive[i]) kept.push_back(i);
     s->select(kept);
+}
+
+// How far the surface is continued across its boundary. The ghosts must reach past the
+// neighbourhood of the boundary's samples at every halving that matters, and the boundary of
+// the ghosts (as dense as any boundary) must stay out of reach of the real samples: a few
+// spacings of the coarsest prefixes drawn. At most a strip of half the surface's area.
+double ghost_width(double area, double boundary_length, uint32_t points) {
+    const double factor = std::getenv("GHOST_W") ? std::atof(std::getenv("GHOST_W")) : 3.0;
+    const double prefix = std::getenv("GHOST_N") ? std::atof(std::getenv("GHOST_N")) : 512.0;
+    const double w = factor * std::sqrt(area / std::min(double(points), prefix));
+    return std::min(w, 0.5 * area / boundary_length);
 }
 
 }  // namespace
@@ -311,6 +509,11 @@ void eliminate_hierarchy(const RawScene& scene, const HierarchyConfig& config, P
                               std::max<uint64_t>(kCandidateCap, 2 * uint64_t(n))));
     config.report("sample", 0);
     Samples s = sample_surface(t, count, &rng);
+    const Boundary boundary = boundary_of(scene, t);
+    if (boundary.size() > 0) {
+        Rng ghost_rng{config.seed ^ 0x67686F7374ull};  // its own numbers: "ghost"
+        add_ghosts(t, boundary, double(count) / t.total, ghost_width(t.total, boundary.length, n), &ghost_rng, &s);
+    }
     // Down to the point count; the eliminated samples are not points.
     // The first elimination is ~3/4 of the work, the halvings the rest.
     eliminate(t, t.total, n, &s, nullptr, config, 0.0f, 0.75f);
@@ -320,16 +523,18 @@ void eliminate_hierarchy(const RawScene& scene, const HierarchyConfig& config, P
     // survivors.
     std::vector<Samples> halvings;
     std::vector<uint32_t> level_end;
-    while (s.size() > 1) {
-        level_end.push_back(s.size());
+    for (uint32_t reals = s.reals(); reals > 1; reals = s.reals()) {
+        level_end.push_back(reals);
         halvings.emplace_back();
-        const float done = 0.75f + 0.25f * (1.0f - float(s.size()) / float(n));
-        eliminate(t, t.total, s.size() / 2, &s, &halvings.back(), config, done,
-                  0.75f + 0.25f * (1.0f - float(s.size() / 2) / float(n)));
+        const float done = 0.75f + 0.25f * (1.0f - float(reals) / float(n));
+        eliminate(t, t.total, reals / 2, &s, &halvings.back(), config, done,
+                  0.75f + 0.25f * (1.0f - float(reals / 2) / float(n)));
     }
-    if (s.size() == 1) level_end.push_back(1);
+    if (s.reals() == 1) level_end.push_back(1);
     std::reverse(level_end.begin(), level_end.end());
-    Samples points = s;  // coarse to fine
+    Samples points;  // coarse to fine
+    for (uint32_t i = 0; i < s.size(); ++i)
+        if (!s.ghost[i]) points.push(s, i);
     for (size_t h = halvings.size(); h-- > 0;)
         for (uint32_t k = halvings[h].size(); k-- > 0;) points.push(halvings[h], k);
     std::vector<Samples>().swap(halvings);

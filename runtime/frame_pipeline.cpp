@@ -188,6 +188,52 @@ void setup_camera(Pipeline* p) {
     s.light_direction = glm::normalize(glm::vec3(glm::inverse(view) * glm::vec4(light_view, 0.0f)));
 }
 
+// Baked points enough for their own triangulation to be the refinement's domain.
+constexpr uint32_t kMinTriangulatedPoints = 256;
+
+// Chooses the refinement's domain and builds its tables; p->point_positions/normals hold the
+// baked points in the bind pose.
+bool refinement_setup(Pipeline* p, char* error, size_t error_size) {
+    const Asset& asset = *p->asset;
+    const uint32_t n = asset.points.point_count;
+    p->refinement_domain = asset.mesh;
+    p->refine_on_points = false;
+    if (n >= kMinTriangulatedPoints) {
+        double area = 0.0;
+        const MeshView& m = asset.mesh;
+        for (uint32_t t = 0; t < m.triangle_count; ++t) {
+            const uint32_t* tri = m.indices + size_t(t) * 3;
+            const glm::vec3 a(m.positions[tri[0] * 3], m.positions[tri[0] * 3 + 1], m.positions[tri[0] * 3 + 2]);
+            const glm::vec3 b(m.positions[tri[1] * 3], m.positions[tri[1] * 3 + 1], m.positions[tri[1] * 3 + 2]);
+            const glm::vec3 c(m.positions[tri[2] * 3], m.positions[tri[2] * 3 + 1], m.positions[tri[2] * 3 + 2]);
+            const float twice = glm::length(glm::cross(b - a, c - a));
+            if (std::isfinite(twice)) area += 0.5 * double(twice);
+        }
+        if (!triangulate_points(n, p->point_positions.get(), p->point_normals.get(), area,
+                                &p->point_triangles)) {
+            std::snprintf(error, error_size, "out of memory triangulating %u points", n);
+            return false;
+        }
+        // A sparse or torn result (scattered points) falls back to the render mesh.
+        if (p->point_triangles.triangle_count >= n) {
+            MeshView& d = p->refinement_domain;
+            d.vertex_count = n;
+            d.triangle_count = p->point_triangles.triangle_count;
+            d.positions = p->point_positions.get();
+            d.normals = p->point_normals.get();
+            d.indices = p->point_triangles.indices.get();
+            p->refine_on_points = true;
+        }
+    }
+    if (!refinement_init(&p->refinement, p->refinement_domain, asset.points, p->point_positions.get(),
+                         p->refine_on_points ? RefinementDomain::points : RefinementDomain::mesh)) {
+        std::snprintf(error, error_size, "out of memory for the run-time refinement of %u triangles",
+                      p->refinement_domain.triangle_count);
+        return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const PipelineConfig& config,
@@ -249,12 +295,7 @@ bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const Pipel
     place_points(asset.points, asset.mesh.indices, asset.mesh.positions, asset.mesh.normals,
                  p->point_positions.get(), p->point_normals.get());
     relevance_scale(asset.points, p->point_positions.get(), p->radius_scale.get());
-    if (budget > 0 &&
-        !refinement_init(&p->refinement, asset.mesh, asset.points, p->point_positions.get())) {
-        std::snprintf(error, error_size, "out of memory for the run-time refinement of %u triangles",
-                      asset.mesh.triangle_count);
-        return false;
-    }
+    if (budget > 0 && !refinement_setup(p, error, error_size)) return false;
     // Rest pose: camera bounds, and the radii used when relevance updates are off (the baked
     // radii expressed in the same space as the posed mesh).
     Clock::time_point clock = Clock::now();
@@ -316,9 +357,17 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
         extra.radius = p->radius.get() + baked;
         extra.triangle = p->refined_triangle.get();
         extra.index = p->refined_index.get();
-        refine_points(&p->refinement, a.mesh, p->vertex_positions.get(), p->vertex_normals.get(),
-                      a.sides.triangle_double_sided, p->size_params, p->config.relevance_update,
-                      &extra, &p->refinement_stats);
+        if (p->refine_on_points) {  // corners are the baked points, as placed this frame
+            MeshView domain = p->refinement_domain;
+            domain.positions = p->point_positions.get();
+            domain.normals = p->point_normals.get();  // double-sided ones already face the eye
+            refine_points(&p->refinement, domain, domain.positions, domain.normals, nullptr,
+                          p->size_params, p->config.relevance_update, &extra, &p->refinement_stats);
+        } else {
+            refine_points(&p->refinement, a.mesh, p->vertex_positions.get(), p->vertex_normals.get(),
+                          a.sides.triangle_double_sided, p->size_params, p->config.relevance_update,
+                          &extra, &p->refinement_stats);
+        }
         p->refined_count = extra.count;
     }
     if (t) t->refine += ms_since(&clock);

@@ -11,6 +11,7 @@
 
 #include "runtime/asset.h"
 #include "runtime/point_refinement.h"
+#include "runtime/point_triangulation.h"
 #include "runtime/renderer.h"
 #include "runtime/stipple_size.h"
 
@@ -84,6 +85,11 @@ struct Pipeline {
     std::unique_ptr<float[]> rest_radius;                 // point_count
     std::unique_ptr<float[]> radius, size;                // capacity
     RefinementMesh refinement;
+    // The refinement's triangles: a triangulation of the baked points when the bake has enough
+    // of them (runtime/point_triangulation.h), else the render mesh.
+    PointTriangulation point_triangles;
+    MeshView refinement_domain;
+    bool refine_on_points = false;
     std::unique_ptr<uint32_t[]> refined_triangle, refined_index;  // budget
     uint32_t refined_count = 0;                           // extra points in the last frame
     RefinementStats refinement_stats;

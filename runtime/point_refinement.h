@@ -1,9 +1,13 @@
 // Run-time refinement: the point hierarchy continued past its finest baked level, so close-ups
-// and stretched surfaces never run out of dots (issue 7, item 1).
+// and stretched surfaces never run out of dots (issue 7, item 1; docs/tone.md).
 //
 // The baked hierarchy orders points coarse to fine with region of influence ~ A / i for the
 // i-th point (thesis §4.5, §3.1.1). When a triangle's screen area asks for more points than the
 // bake holds, the triangle continues that order with its own deterministic sequence:
+//   - Domain: the triangles between the baked points themselves (point_triangulation.h), so
+//     the extra points fill the holes between baked points whatever the render mesh looks
+//     like; the render mesh only for bakes too small to triangulate (then the baked points
+//     hand over to the sequence in close-ups, see below).
 //   - Where: the k-th extra point of triangle t lies at a fixed barycentric position
 //     (runtime/refinement_sequence.h): root cells by longest-edge bisection (slivers, large
 //     triangles), then a progressive farthest-point pattern per cell, then midpoint sub-cells.
@@ -11,17 +15,17 @@
 //     1 / (rho0 + (k + phase) / a), rho0 the baked density there: the A / i law, continued
 //     (phase in (0, 1] per triangle, so triangles smaller than one point fill in smoothly, in
 //     the farthest-point order of runtime/refinement_order.h).
-//   - Under deformation: its neighbours are the host triangle's corners, so Alg. 6.4's
-//     "radius follows the neighbours" becomes "region follows the triangle's area":
+//   - Under deformation: its neighbours are the triangle's corners, so Alg. 6.4's "radius
+//     follows the neighbours" becomes "region follows the triangle's area":
 //     region *= current area / bind area.
 //   - Which: only the points the size rule (Alg. 3.2) can draw are generated — per triangle the
 //     count whose ratio can reach 1 at any corner, and only inside sub-triangles that touch the
 //     view frustum. They appear at size 0 and grow with the same smooth rule as baked points,
 //     so zooming in is as frame-coherent as zooming out.
-//   - Hand-over: two even point sets laid over each other are not even, so where the size
-//     rule wants the surface 1.1x to 1.4x denser than the bake, the baked points fade out
-//     (their ink times 1 - h, h smooth in log density) while the sequence takes over their
-//     share; deeper close-ups are drawn by the sequence alone. Fading is smooth: no pops.
+//   - Hand-over (render-mesh domain only): two even point sets laid over each other are not
+//     even, so where the size rule wants the surface 1.1x to 1.4x denser than the bake, the
+//     baked points fade out (ink times 1 - h, h smooth in log density) while the sequence
+//     takes over their share; deeper close-ups are drawn by the sequence alone.
 //   - Memory: a fixed budget taken at load. When a frame needs more, every triangle keeps the
 //     same fraction of its extra points (the coarsest, so the order still holds) and tone in the
 //     refined areas drops by that fraction; RefinementStats::budget_scale reports it.
@@ -56,6 +60,7 @@ struct RefinementMesh {
     std::unique_ptr<float[]> fade;           // per frame: size factor of the baked points here
     std::unique_ptr<RefinementVertex[]> vertex;  // per vertex, rewritten every frame
     float finest_density = 0.0f;             // rho0: baked points per unit bind area, finest level
+    bool hand_over = true;                   // baked points fade in close-ups (mesh domain)
 };
 
 // Extra points of one frame, structure of arrays. Positions/normals/radius go straight into the
@@ -76,10 +81,17 @@ struct RefinementStats {
     float budget_scale = 1.0f;  // < 1 when the budget bound
 };
 
-// Builds the per-triangle tables; finest_density = baked points / bind surface area, and
-// per triangle the density of the points it hosts, shrunk towards it.
+// What the refinement's triangles are: the render mesh (baked points hosted on them, hand-over
+// to the sequence in close-ups), or a triangulation of the baked points themselves
+// (runtime/point_triangulation.h: corners are baked points, no hand-over).
+enum class RefinementDomain { mesh, points };
+
+// Builds the per-triangle tables of `mesh` (the domain's bind pose): finest_density = baked
+// points / bind surface area, per triangle the local baked density, root cells, first-point
+// phases (bind_point_positions: the baked points, 3 floats each).
 bool refinement_init(RefinementMesh* r, const MeshView& mesh, const PointsView& points,
-                     const float* bind_point_positions);
+                     const float* bind_point_positions,
+                     RefinementDomain domain = RefinementDomain::mesh);
 
 
 // Generates the frame's extra points: `positions`/`normals` are the posed mesh vertices
@@ -90,8 +102,8 @@ void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positio
                    const float* normals, const uint8_t* double_sided, const SizeParams& params,
                    bool stretch, RefinedPoints* out, RefinementStats* stats);
 
-// Hand-over, after size_stipples: scales each baked point's diameter by its host triangle's
-// fade from the last refine_points (1 where the bake alone draws).
+// Hand-over (mesh domain only), after size_stipples: scales each baked point's diameter by
+// its host triangle's fade from the last refine_points (1 where the bake alone draws).
 void fade_baked_points(const RefinementMesh& r, const PointsView& points, float* size);
 
 }  // namespace stipple

@@ -1,5 +1,7 @@
 #include "runtime/refinement_order.h"
 
+#include "runtime/spatial_grid.h"
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -17,58 +19,6 @@ std::unique_ptr<T[]> array(size_t n) {
 }
 
 glm::vec3 point3(const float* p, uint32_t i) { return glm::vec3(p[i * 3], p[i * 3 + 1], p[i * 3 + 2]); }
-
-// Uniform grid over 3D points, hashed into buckets (counting sort, no per-cell allocation).
-struct Grid {
-    float cell = 1.0f;
-    uint32_t mask = 0;                    // bucket count - 1
-    std::unique_ptr<uint32_t[]> start;    // bucket -> first slot, bucket count + 1
-    std::unique_ptr<uint32_t[]> items;    // point indices sorted by bucket
-    const float* points = nullptr;
-
-    glm::ivec3 at(const glm::vec3& p) const { return glm::ivec3(glm::floor(p / cell)); }
-    uint32_t bucket(const glm::ivec3& c) const {
-        return (uint32_t(c.x) * 73856093u ^ uint32_t(c.y) * 19349663u ^ uint32_t(c.z) * 83492791u) & mask;
-    }
-    // Indexes the points i with use[i] (or all if use is null).
-    bool build(const float* p, uint32_t n, float cell_size, const float* use) {
-        points = p;
-        cell = cell_size;
-        uint32_t buckets = 1;
-        while (buckets < 2 * n && buckets < (1u << 30)) buckets <<= 1;
-        mask = buckets - 1;
-        start = array<uint32_t>(size_t(buckets) + 1);
-        items = array<uint32_t>(n);
-        std::unique_ptr<uint32_t[]> of = array<uint32_t>(n);
-        if (!start || !items || !of) return false;
-        std::fill(start.get(), start.get() + buckets + 1, 0u);
-        for (uint32_t i = 0; i < n; ++i) {
-            of[i] = bucket(at(point3(p, i)));
-            if (!use || use[i] > 0.0f) ++start[of[i] + 1];
-        }
-        for (uint32_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
-        std::unique_ptr<uint32_t[]> fill = array<uint32_t>(buckets);
-        if (!fill) return false;
-        std::copy(start.get(), start.get() + buckets, fill.get());
-        for (uint32_t i = 0; i < n; ++i)
-            if (!use || use[i] > 0.0f) items[fill[of[i]]++] = i;
-        return true;
-    }
-    // Calls f(index) for the points in the cells overlapping the cube of half-size r at p
-    // (and possibly a few others that share their buckets).
-    template <typename F>
-    void near(const glm::vec3& p, float r, F f) const {
-        const glm::ivec3 lo = at(p - glm::vec3(r)), hi = at(p + glm::vec3(r));
-        for (int z = lo.z; z <= hi.z; ++z)
-            for (int y = lo.y; y <= hi.y; ++y)
-                for (int x = lo.x; x <= hi.x; ++x) {
-                    const glm::ivec3 c(x, y, z);
-                    const uint32_t b = bucket(c);
-                    for (uint32_t k = start[b]; k < start[b + 1]; ++k)
-                        if (at(point3(points, items[k])) == c) f(items[k]);
-                }
-    }
-};
 
 // Max-heap of triangles keyed by dist, with decrease-key.
 struct Heap {
@@ -122,7 +72,7 @@ bool first_point_phases(uint32_t triangle_count, const float* first_points, cons
         // few cells are clamped (such holes come first whatever their exact size).
         const float spacing = float(std::sqrt(total_area / double(baked_count + n)));
         const float reach = 3.0f * spacing;
-        Grid baked_grid, tri_grid;
+        SpatialGrid baked_grid, tri_grid;
         std::unique_ptr<float[]> dist = array<float>(n);
         Heap heap;
         heap.item = array<uint32_t>(n);

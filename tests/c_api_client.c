@@ -5,6 +5,19 @@
 
 #include "runtime/stipple.h"
 
+/* Loads `asset_path` and creates a player for it; 0 on success, -1 (nothing to free) if not. */
+static int open_player(const char* asset_path, const stipple_player_desc* desc, stipple_asset** asset,
+                       stipple_player** player) {
+    *asset = NULL;
+    *player = NULL;
+    if (stipple_asset_load_file(asset_path, asset) != STIPPLE_OK) return -1;
+    if (stipple_player_create(*asset, desc, player) != STIPPLE_OK) {
+        stipple_asset_destroy(*asset);
+        return -1;
+    }
+    return 0;
+}
+
 /* Renders frame `time` of clip 0 and returns the number of dark pixels, or -1 on error
  * (the message is in stipple_last_error()). */
 long c_api_render_dark_pixels(const char* asset_path, stipple_get_proc_fn get_proc, float time,
@@ -15,15 +28,11 @@ long c_api_render_dark_pixels(const char* asset_path, stipple_get_proc_fn get_pr
     uint8_t* rgba;
     long dark = 0;
     size_t i;
-    if (stipple_asset_load_file(asset_path, &asset) != STIPPLE_OK) return -1;
     memset(&desc, 0, sizeof(desc));
     desc.width = 320;
     desc.height = 240;
     desc.get_proc_address = get_proc;
-    if (stipple_player_create(asset, &desc, &player) != STIPPLE_OK) {
-        stipple_asset_destroy(asset);
-        return -1;
-    }
+    if (open_player(asset_path, &desc, &asset, &player) != 0) return -1;
     rgba = (uint8_t*)malloc(320 * 240 * 4);
     stipple_player_draw(player, stipple_asset_clip_count(asset) > 0 ? 0 : -1, time);
     stipple_player_read_rgba(player, rgba);
@@ -44,7 +53,6 @@ long c_api_blend_height(const char* asset_path, stipple_get_proc_fn get_proc, fl
     uint8_t* rgba;
     long top = -1, bottom = -1;
     int x, y;
-    if (stipple_asset_load_file(asset_path, &asset) != STIPPLE_OK) return -1;
     memset(&desc, 0, sizeof(desc));
     desc.width = 200;
     desc.height = 400;
@@ -56,10 +64,7 @@ long c_api_blend_height(const char* asset_path, stipple_get_proc_fn get_proc, fl
     desc.background_set = 1;
     desc.background_rgb = 0x808080;
     desc.get_proc_address = get_proc;
-    if (stipple_player_create(asset, &desc, &player) != STIPPLE_OK) {
-        stipple_asset_destroy(asset);
-        return -1;
-    }
+    if (open_player(asset_path, &desc, &asset, &player) != 0) return -1;
     rgba = (uint8_t*)malloc(200 * 400 * 4);
     stipple_player_draw_blend(player, stipple_asset_find_clip(asset, "rest"), 1.0f,
                               stipple_asset_find_clip(asset, "stretch"), 1.0f, weight);
@@ -86,7 +91,6 @@ long c_api_closeup_dark_pixels(const char* asset_path, stipple_get_proc_fn get_p
     uint8_t* rgba;
     long dark = 0;
     size_t i;
-    if (stipple_asset_load_file(asset_path, &asset) != STIPPLE_OK) return -1;
     memset(&desc, 0, sizeof(desc));
     desc.width = 320;
     desc.height = 240;
@@ -96,10 +100,7 @@ long c_api_closeup_dark_pixels(const char* asset_path, stipple_get_proc_fn get_p
     desc.no_silhouettes = 1;
     desc.refinement_budget = refinement_budget;
     desc.get_proc_address = get_proc;
-    if (stipple_player_create(asset, &desc, &player) != STIPPLE_OK) {
-        stipple_asset_destroy(asset);
-        return -1;
-    }
+    if (open_player(asset_path, &desc, &asset, &player) != 0) return -1;
     rgba = (uint8_t*)malloc(320 * 240 * 4);
     stipple_player_draw(player, -1, 0.0f);
     stipple_player_read_rgba(player, rgba);

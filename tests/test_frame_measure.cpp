@@ -390,6 +390,28 @@ TEST(MeasureCli, PrintsValidJsonForEveryCommand) {
     run("rm -rf " + q);
 }
 
+// --contours: silhouette lines drawn inside the object (a --tone 0 frame with silhouettes)
+// count as outline, so a dot blinking next to an inner contour is no pop.
+TEST(MeasureCli, InnerContoursAreOutlinesForPops) {
+    const std::string dir = make_frames_dir();
+    const std::string lines = dir + "_lines";
+    run("rm -rf '" + lines + "' && mkdir -p '" + lines + "'");
+    const int w = 64, h = 48;
+    std::vector<uint8_t> frame(size_t(w) * h * 4, 255);
+    for (int y = 0; y < h; ++y) {  // a contour line at x = 40..41, under dots 3 and 4
+        frame[(size_t(y) * w + 40) * 4] = frame[(size_t(y) * w + 40) * 4 + 1] = frame[(size_t(y) * w + 40) * 4 + 2] = 0;
+        frame[(size_t(y) * w + 41) * 4] = frame[(size_t(y) * w + 41) * 4 + 1] = frame[(size_t(y) * w + 41) * 4 + 2] = 0;
+    }
+    std::string error;
+    for (const char* name : {"/frame_0000.png", "/frame_0001.png"})
+        ASSERT_TRUE(stipple::image::write_png((lines + name).c_str(), w, h, frame.data(), false, &error)) << error;
+    const std::string q = "'" + dir + "'";
+    nlohmann::json j = run_json("coherence " + q + " --contours '" + lines + "'");
+    EXPECT_NEAR(j["pairs"][0]["persistence"].get<double>(), 2.0 / 3.0, 1e-6);
+    EXPECT_EQ(j["pairs"][0]["pops"].get<int>(), 0);
+    run("rm -rf " + q + " '" + lines + "'");
+}
+
 // stipple-play --mask-out writes the mesh pass's coverage: the same pixels as the legacy paper
 // frame (--tone 0 --background 808080), the right way up, and every listed dot lies on it.
 TEST(MeasureCli, PlayerMaskOutMatchesThePaperFrame) {

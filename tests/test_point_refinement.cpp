@@ -39,6 +39,13 @@ struct Square {
         positions = {x0, 0, 0, x0 + side, 0, 0, x0 + side, side, 0, x0, side, 0};
         normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
     }
+    // The unit square centred on the origin.
+    static Square centred() {
+        Square sq(1.0f, -0.5f);
+        sq.positions[1] = sq.positions[4] = -0.5f;
+        sq.positions[7] = sq.positions[10] = 0.5f;
+        return sq;
+    }
     MeshView view() const {
         MeshView m;
         m.vertex_count = uint32_t(positions.size() / 3);
@@ -144,9 +151,7 @@ TEST(PointRefinement, CountFollowsTheDensityTheSizeRuleAsksFor) {
     // the centre. Tone 0.3 asks for ink / dot area of the drawn density (per unit^2 of surface
     // times pixels^2 per unit^2); the number of extra points generated is at most that density
     // over the area, and not much less (corners bound the density from above).
-    Square sq(1.0f, -0.5f);
-    sq.positions[1] = sq.positions[4] = -0.5f;
-    sq.positions[7] = sq.positions[10] = 0.5f;
+    const Square sq = Square::centred();
     RefinementMesh r;
     ASSERT_TRUE(refinement_init(&r, sq.view(), no_points(), nullptr));
     EXPECT_EQ(r.finest_density, 0.0f);
@@ -203,9 +208,7 @@ TEST(PointRefinement, BakedPointsComeFirstThenHandOver) {
     // points: the bake suffices, no extra point, baked points at full size. From distance 0.7
     // it wants ~9,000, over twice the bake everywhere: the sequence has taken over (baked
     // points faded to nothing, as many extra points as without a bake).
-    Square sq(1.0f, -0.5f);
-    sq.positions[1] = sq.positions[4] = -0.5f;
-    sq.positions[7] = sq.positions[10] = 0.5f;
+    const Square sq = Square::centred();
     const uint32_t n = 2000;
     std::vector<uint32_t> host(n), offsets(n + 1, 0);
     std::vector<float> u(n), v(n), radius(n, 0.01f), bind(size_t(n) * 3);
@@ -248,9 +251,7 @@ TEST(PointRefinement, BakedPointsComeFirstThenHandOver) {
 }
 
 TEST(PointRefinement, OnlyWhatTheViewShowsAndTheBudgetHolds) {
-    Square sq(1.0f, -0.5f);
-    sq.positions[1] = sq.positions[4] = -0.5f;
-    sq.positions[7] = sq.positions[10] = 0.5f;
+    const Square sq = Square::centred();
     RefinementMesh r;
     ASSERT_TRUE(refinement_init(&r, sq.view(), no_points(), nullptr));
     Extra whole(1 << 20), half(1 << 20), away(1 << 20);

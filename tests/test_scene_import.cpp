@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/gltf_test_util.h"
 #include "bake/scene_import.h"
 
 namespace stipple::bake {
@@ -29,40 +30,8 @@ std::string write_file(const std::string& name, const std::string& content) {
     return path;
 }
 
-// Little-endian binary buffer built value by value.
-struct Bin {
-    std::vector<uint8_t> bytes;
-    template <typename T>
-    Bin& put(std::initializer_list<T> values) {
-        for (T v : values) {
-            uint8_t raw[sizeof(T)];
-            std::memcpy(raw, &v, sizeof(T));
-            bytes.insert(bytes.end(), raw, raw + sizeof(T));
-        }
-        return *this;
-    }
-    Bin& pad4() {
-        while (bytes.size() % 4) bytes.push_back(0);
-        return *this;
-    }
-};
-
-std::string base64(const std::vector<uint8_t>& in) {
-    static const char* const kAlphabet =
-        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (size_t i = 0; i < in.size(); i += 3) {
-        const uint32_t b0 = in[i];
-        const uint32_t b1 = i + 1 < in.size() ? in[i + 1] : 0;
-        const uint32_t b2 = i + 2 < in.size() ? in[i + 2] : 0;
-        const uint32_t triple = (b0 << 16) | (b1 << 8) | b2;
-        out += kAlphabet[(triple >> 18) & 63];
-        out += kAlphabet[(triple >> 12) & 63];
-        out += i + 1 < in.size() ? kAlphabet[(triple >> 6) & 63] : '=';
-        out += i + 2 < in.size() ? kAlphabet[triple & 63] : '=';
-    }
-    return out;
-}
+// Little-endian binary buffer built value by value (tests/gltf_test_util.h).
+using Bin = stipple::test::GltfBin;
 
 void replace_all(std::string* s, const std::string& from, const std::string& to) {
     for (size_t at = s->find(from); at != std::string::npos; at = s->find(from, at + to.size())) {
@@ -71,9 +40,9 @@ void replace_all(std::string* s, const std::string& from, const std::string& to)
 }
 
 // Writes a .gltf whose "@BUFFER@" placeholder becomes buffer 0 holding `bin` as a data URI.
-std::string write_gltf(const std::string& name, std::string json, const Bin& bin) {
+std::string write_named_gltf(const std::string& name, std::string json, const Bin& bin) {
     replace_all(&json, "@BUFFER@",
-                R"({"uri": "data:application/octet-stream;base64,)" + base64(bin.bytes) +
+                R"({"uri": "data:application/octet-stream;base64,)" + stipple::test::gltf_base64(bin.bytes) +
                     R"(", "byteLength": )" + std::to_string(bin.bytes.size()) + "}");
     return write_file(name, json);
 }
@@ -208,7 +177,7 @@ TEST(GltfImport, CesiumManHasOneSkinOneClipAndValidWeights) {
 
 TEST(GltfImport, StaticTriangleIsBakedToWorldSpace) {
     const std::string path =
-        write_gltf("static_triangle.gltf", kTriangleJson, triangle_bin({0, 1, 2}));
+        write_named_gltf("static_triangle.gltf", kTriangleJson, triangle_bin({0, 1, 2}));
     RawScene s;
     std::string error;
     ASSERT_TRUE(import_gltf(path, &s, &error)) << error;
@@ -237,7 +206,7 @@ TEST(GltfImport, HierarchyAndMatrixNodesComposeInStaticScenes) {
                 R"("nodes": [{"mesh": 0, "scale": [2, 2, 2]},
                              {"children": [0],
                               "matrix": [0, 1, 0, 0, -1, 0, 0, 0, 0, 0, 1, 0, 10, 0, 0, 1]}],)");
-    const std::string path = write_gltf("hierarchy.gltf", json, triangle_bin({0, 1, 2}));
+    const std::string path = write_named_gltf("hierarchy.gltf", json, triangle_bin({0, 1, 2}));
     RawScene s;
     std::string error;
     ASSERT_TRUE(import_gltf(path, &s, &error)) << error;
@@ -255,7 +224,7 @@ TEST(GltfImport, HierarchyAndMatrixNodesComposeInStaticScenes) {
 }
 
 TEST(GltfImport, OutOfRangeIndexFails) {
-    const std::string path = write_gltf("bad_index.gltf", kTriangleJson, triangle_bin({0, 1, 5}));
+    const std::string path = write_named_gltf("bad_index.gltf", kTriangleJson, triangle_bin({0, 1, 5}));
     RawScene s;
     std::string error;
     EXPECT_FALSE(import_gltf(path, &s, &error));
@@ -268,7 +237,7 @@ TEST(GltfImport, OutOfRangeIndexFails) {
 TEST(GltfImport, AccessorPastTheEndOfItsBufferFails) {
     std::string json = kTriangleJson;
     replace_all(&json, R"("count": 3, "type": "VEC3")", R"("count": 4, "type": "VEC3")");
-    const std::string path = write_gltf("short_buffer.gltf", json, triangle_bin({0, 1, 2}));
+    const std::string path = write_named_gltf("short_buffer.gltf", json, triangle_bin({0, 1, 2}));
     RawScene s;
     std::string error;
     EXPECT_FALSE(import_gltf(path, &s, &error));
@@ -316,7 +285,7 @@ TEST(GltfImport, TriangleStripKeepsWindingAndStrideIsHonoured) {
          "min": [0, 0, 0], "max": [1, 1, 0]},
         {"bufferView": 0, "byteOffset": 12, "componentType": 5126, "count": 4, "type": "VEC3"}]
     })";
-    const std::string path = write_gltf("strip.gltf", json, bin);
+    const std::string path = write_named_gltf("strip.gltf", json, bin);
     RawScene s;
     std::string error;
     ASSERT_TRUE(import_gltf(path, &s, &error)) << error;
@@ -362,7 +331,7 @@ std::string write_skinned_gltf(const std::string& name, uint8_t w2) {
         {"bufferView": 1, "componentType": 5121, "count": 3, "type": "VEC4"},
         {"bufferView": 2, "componentType": 5121, "normalized": true, "count": 3, "type": "VEC4"}]
     })";
-    return write_gltf(name, json, bin);
+    return write_named_gltf(name, json, bin);
 }
 
 TEST(GltfImport, SkinWeightsAreRenormalisedAndUnskinnedMeshesBecomeRigidJoints) {
@@ -421,7 +390,7 @@ TEST(GltfImport, SparseAccessorWithoutBufferViewIsZerosWithSubstitutions) {
     })";
     RawScene s;
     std::string error;
-    ASSERT_TRUE(import_gltf(write_gltf("sparse.gltf", json, bin), &s, &error)) << error;
+    ASSERT_TRUE(import_gltf(write_named_gltf("sparse.gltf", json, bin), &s, &error)) << error;
     EXPECT_EQ(s.positions, (std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0}));
     EXPECT_EQ(s.triangle_count(), 1u);
 }
@@ -463,7 +432,7 @@ std::string write_animated_gltf(const std::string& name, const std::string& chan
         "channels": [@CHANNELS@]}]
     })";
     replace_all(&json, "@CHANNELS@", channels);
-    return write_gltf(name, json, bin);
+    return write_named_gltf(name, json, bin);
 }
 
 TEST(GltfImport, CubicsplineIsImportedAndBadChannelsAreSkippedWithWarnings) {

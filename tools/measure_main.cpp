@@ -48,11 +48,15 @@ const char* kEvennessUsage =
     "  clump_share, blocks_inside, empty_blocks, empty_share}.\n";
 
 const char* kCoherenceUsage =
-    "usage: stipple-measure coherence DIR [--from N] [--to N]\n"
+    "usage: stipple-measure coherence DIR [--from N] [--to N] [--contours DIR2]\n"
     "  Reads DIR/dots_NNNN.csv and DIR/mask_NNNN.png for frames N..M and measures each\n"
     "  consecutive pair: persistence, appeared, vanished, pops (big dots appearing or vanishing\n"
     "  more than 4 px inside the mask), pop_share. Default: from 0 (or the first dots file) to\n"
     "  the last of the consecutive run of dots files.\n"
+    "  --contours DIR2  DIR2/frame_NNNN.png are the same frames drawn with --tone 0 and\n"
+    "                   silhouettes on: their line pixels (luminance < 0.5) leave the mask, so\n"
+    "                   'away from silhouettes' also means away from inner contours (a leg\n"
+    "                   passing in front of the other)\n"
     "  Prints {dir, from, to, pairs: [...], summary: {...}}.\n";
 
 const char* kFramesUsage =
@@ -316,7 +320,19 @@ struct CoherenceJson {
     std::string summary;  // JSON object
 };
 
-CoherenceJson coherence_json(const std::string& dir, const std::vector<long>& frames) {
+// Removes the silhouette line pixels of `lines` (a --tone 0 frame with silhouettes) from `mask`.
+void remove_contours(const std::string& lines_path, m::Mask* mask) {
+    m::Image lines;
+    std::string error;
+    if (!m::load_png(lines_path, &lines, &error)) die(error);
+    if (lines.width != mask->width || lines.height != mask->height)
+        die("size mismatch: '" + lines_path + "' and its mask differ in size");
+    for (size_t i = 0; i < mask->inside.size(); ++i)
+        if (m::luminance(&lines.rgba[i * 4]) < 0.5) mask->inside[i] = 0;
+}
+
+CoherenceJson coherence_json(const std::string& dir, const std::vector<long>& frames,
+                             const std::string& contours = std::string()) {
     std::vector<m::FramePair> pairs;
     std::vector<long> pair_start;
     std::string list;
@@ -329,6 +345,7 @@ CoherenceJson coherence_json(const std::string& dir, const std::vector<long>& fr
         const std::string mask_path = numbered(dir, "mask", f, "png");
         if (!file_exists(mask_path)) die("missing mask '" + mask_path + "'");
         mask_after = load_mask(mask_path);
+        if (!contours.empty()) remove_contours(numbered(contours, "frame", f, "png"), &mask_after);
         dist_after = m::distance_to_outside(mask_after);
         if (previous == f - 1) {
             if (mask_before.width != mask_after.width || mask_before.height != mask_after.height)
@@ -350,10 +367,12 @@ CoherenceJson coherence_json(const std::string& dir, const std::vector<long>& fr
 }
 
 int coherence(stipple::cli::Args& args) {
-    std::string dir, a;
+    std::string dir, contours, a;
     long from = -1, to = -1;
     while (args.next(&a)) {
-        if (a == "--from") {
+        if (a == "--contours") {
+            contours = args.value(a);
+        } else if (a == "--from") {
             from = frame_number(args, a);
         } else if (a == "--to") {
             to = frame_number(args, a);
@@ -383,7 +402,8 @@ int coherence(stipple::cli::Args& args) {
         frames.push_back(f);
     }
     if (frames.size() < 2) die("coherence needs at least two consecutive dots files in '" + dir + "'");
-    const CoherenceJson c = coherence_json(dir, frames);
+    if (!contours.empty()) check_dir(contours);
+    const CoherenceJson c = coherence_json(dir, frames, contours);
     std::printf("{\"dir\": %s, \"from\": %ld, \"to\": %ld, \"pairs\": %s, \"summary\": %s}\n",
                 json_string(dir).c_str(), frames.front(), frames.back(), c.pairs.c_str(),
                 c.summary.c_str());

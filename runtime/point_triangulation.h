@@ -1,0 +1,34 @@
+// A triangulation of the baked points themselves, built at load: the domain the run-time
+// refinement continues the hierarchy on (runtime/point_refinement.h).
+//
+// The render mesh is a poor domain for refinement: game meshes are slivers, fans and rings of
+// long thin triangles, and regular meshes repeat one cell pattern. The finest level of an even
+// bake is evenly spread over the surface whatever the mesh, so the triangles between its
+// points are nearly equilateral. Their corners are baked points: extra points placed inside
+// them (away from their edges and corners) fill the holes between the baked points, so the
+// hierarchy continues without handing over to a second point set. Corners move with their
+// host triangles every frame; a point inside lies on the plane of its three corners (the
+// chord, at most spacing^2 / (8 * curvature radius) off the surface).
+//
+// Construction: for each point, its neighbours within 2.5 spacings that lie on the same sheet
+// (normals agree, offset mostly in the tangent plane) are projected onto its tangent plane;
+// the point's Voronoi cell among them (half-plane clipping) gives its Delaunay neighbours in
+// angular order, and consecutive pairs make triangles. Each triangle is kept once, from its
+// lowest-indexed corner. Openings wider than 150 degrees are surface boundaries: no triangle.
+#pragma once
+#include <cstdint>
+#include <memory>
+
+namespace stipple {
+
+struct PointTriangulation {
+    uint32_t triangle_count = 0;
+    std::unique_ptr<uint32_t[]> indices;  // 3 per triangle, each < the point count
+};
+
+// `positions`/`normals`: count points, 3 floats each (bind pose, unit normals); `area`: the
+// surface area they cover. False only when memory runs out.
+bool triangulate_points(uint32_t count, const float* positions, const float* normals,
+                        double area, PointTriangulation* out);
+
+}  // namespace stipple

@@ -1,0 +1,43 @@
+// A uniform grid over 3D points, hashed into buckets, for the load-time neighbour searches of
+// the run-time refinement (refinement_order, point_triangulation). Built once with counting
+// sort: no allocation per cell, and none at all after build().
+#pragma once
+#include <cstdint>
+#include <memory>
+
+#include <glm/glm.hpp>
+
+namespace stipple {
+
+struct SpatialGrid {
+    float cell = 1.0f;
+    uint32_t mask = 0;                  // bucket count - 1
+    std::unique_ptr<uint32_t[]> start;  // bucket -> first slot, bucket count + 1
+    std::unique_ptr<uint32_t[]> items;  // point indices sorted by bucket
+    const float* points = nullptr;      // 3 floats per point
+
+    glm::ivec3 at(const glm::vec3& p) const { return glm::ivec3(glm::floor(p / cell)); }
+    uint32_t bucket(const glm::ivec3& c) const {
+        return (uint32_t(c.x) * 73856093u ^ uint32_t(c.y) * 19349663u ^ uint32_t(c.z) * 83492791u) & mask;
+    }
+    glm::vec3 point(uint32_t i) const { return glm::vec3(points[i * 3], points[i * 3 + 1], points[i * 3 + 2]); }
+
+    // Indexes the points i < n with use[i] > 0 (all if use is null). False if out of memory.
+    bool build(const float* p, uint32_t n, float cell_size, const float* use);
+
+    // Calls f(index) for the points in the cells overlapping the cube of half-size r at p.
+    template <typename F>
+    void near(const glm::vec3& p, float r, F f) const {
+        const glm::ivec3 lo = at(p - glm::vec3(r)), hi = at(p + glm::vec3(r));
+        for (int z = lo.z; z <= hi.z; ++z)
+            for (int y = lo.y; y <= hi.y; ++y)
+                for (int x = lo.x; x <= hi.x; ++x) {
+                    const glm::ivec3 c(x, y, z);
+                    const uint32_t b = bucket(c);
+                    for (uint32_t k = start[b]; k < start[b + 1]; ++k)
+                        if (at(point(items[k])) == c) f(items[k]);
+                }
+    }
+};
+
+}  // namespace stipple
