@@ -1,10 +1,12 @@
 // Benchmark of the run-time refinement (runtime/point_refinement.h) on CesiumMan baked to 20k
-// points, bind pose, 640x480, constant tone 0.3:
+// points, bind pose, 640x480, constant tone 0.3, on the triangulation of the baked points (as
+// the pipeline refines):
 //   - close-up (zoom 8 on the chest): ns per extra point generated, against the simplest
 //     alternative: a bake dense enough to need no refinement, whose points are placed
 //     (Alg. 6.3) and relevance-updated (Alg. 6.4) every frame — per point of that bake;
-//   - full view (zoom 1): what the refinement costs when the baked hierarchy suffices (its
-//     per-vertex and per-triangle checks), per triangle.
+//   - full view (zoom 0.5): what the refinement costs when the baked hierarchy suffices (its
+//     per-vertex and per-triangle checks), per triangle of the domain (~2 per baked point);
+//   - building the triangulation at load, per baked point.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -15,13 +17,16 @@
 #include "bench/bench_asset.h"
 #include "runtime/point_placement.h"
 #include "runtime/point_refinement.h"
+#include "runtime/point_triangulation.h"
 
 namespace {
 
 struct Fixture {
     stipple::Asset asset;
     stipple::RefinementMesh refinement;
-    std::vector<float> bind, positions, normals, radius;
+    stipple::PointTriangulation triangles;
+    stipple::MeshView domain;  // the triangles between the baked points
+    std::vector<float> bind, bind_normals, positions, normals, radius;
     std::vector<uint32_t> triangle, index;
     stipple::RefinedPoints out;
     glm::vec3 lo = glm::vec3(1e30f), hi = glm::vec3(-1e30f);
@@ -36,9 +41,27 @@ Fixture* fixture(uint32_t points) {
     const stipple::MeshView& m = f->asset.mesh;
     const size_t n = f->asset.points.point_count, capacity = 1u << 20;
     f->bind.resize(n * 3);
-    std::vector<float> normals(n * 3);
-    stipple::place_points(f->asset.points, m.indices, m.positions, m.normals, f->bind.data(), normals.data());
-    if (!stipple::refinement_init(&f->refinement, m, f->asset.points, f->bind.data())) return nullptr;
+    f->bind_normals.resize(n * 3);
+    stipple::place_points(f->asset.points, m.indices, m.positions, m.normals, f->bind.data(),
+                          f->bind_normals.data());
+    double area = 0.0;
+    for (uint32_t t = 0; t < m.triangle_count; ++t) {
+        const uint32_t* tri = m.indices + size_t(t) * 3;
+        const glm::vec3 a(m.positions[tri[0] * 3], m.positions[tri[0] * 3 + 1], m.positions[tri[0] * 3 + 2]);
+        const glm::vec3 b(m.positions[tri[1] * 3], m.positions[tri[1] * 3 + 1], m.positions[tri[1] * 3 + 2]);
+        const glm::vec3 c(m.positions[tri[2] * 3], m.positions[tri[2] * 3 + 1], m.positions[tri[2] * 3 + 2]);
+        area += 0.5 * double(glm::length(glm::cross(b - a, c - a)));
+    }
+    if (!stipple::triangulate_points(uint32_t(n), f->bind.data(), f->bind_normals.data(), area, &f->triangles))
+        return nullptr;
+    f->domain.vertex_count = uint32_t(n);
+    f->domain.triangle_count = f->triangles.triangle_count;
+    f->domain.positions = f->bind.data();
+    f->domain.normals = f->bind_normals.data();
+    f->domain.indices = f->triangles.indices.get();
+    if (!stipple::refinement_init(&f->refinement, f->domain, f->asset.points, f->bind.data(),
+                                  stipple::RefinementDomain::points))
+        return nullptr;
     f->positions.resize(std::max(capacity, n) * 3);
     f->normals.resize(std::max(capacity, n) * 3);
     f->radius.resize(std::max(capacity, n));
@@ -78,7 +101,7 @@ void BM_RefineCloseUp(benchmark::State& state) {
     Fixture* f = fixture(20000);
     if (!f) return state.SkipWithError("fixture failed");
     const stipple::SizeParams s = view(*f, 8.0f);
-    const stipple::MeshView& m = f->asset.mesh;
+    const stipple::MeshView& m = f->domain;
     for (auto _ : state) {
         stipple::refine_points(&f->refinement, m, m.positions, m.normals, nullptr, s, true, &f->out, nullptr);
         benchmark::ClobberMemory();
@@ -109,7 +132,7 @@ void BM_RefineFullViewNothingNeeded(benchmark::State& state) {
     Fixture* f = fixture(20000);
     if (!f) return state.SkipWithError("fixture failed");
     stipple::SizeParams s = view(*f, 0.5f);
-    const stipple::MeshView& m = f->asset.mesh;
+    const stipple::MeshView& m = f->domain;
     for (auto _ : state) {
         stipple::refine_points(&f->refinement, m, m.positions, m.normals, nullptr, s, true, &f->out, nullptr);
         benchmark::ClobberMemory();
@@ -119,7 +142,21 @@ void BM_RefineFullViewNothingNeeded(benchmark::State& state) {
         double(m.triangle_count), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
+void BM_TriangulateAtLoad(benchmark::State& state) {
+    Fixture* f = fixture(20000);
+    if (!f) return state.SkipWithError("fixture failed");
+    const uint32_t n = f->asset.points.point_count;
+    for (auto _ : state) {
+        stipple::PointTriangulation t;
+        stipple::triangulate_points(n, f->bind.data(), f->bind_normals.data(), 1.5356, &t);
+        benchmark::DoNotOptimize(t.triangle_count);
+    }
+    state.counters["per_point"] = benchmark::Counter(
+        double(n), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 BENCHMARK(BM_RefineCloseUp);
+BENCHMARK(BM_TriangulateAtLoad);
 BENCHMARK(BM_PlaceAndRelevanceOfADenseBake)->Arg(100000);
 BENCHMARK(BM_RefineFullViewNothingNeeded);
 

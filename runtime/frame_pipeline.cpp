@@ -188,6 +188,31 @@ void setup_camera(Pipeline* p) {
     s.light_direction = glm::normalize(glm::vec3(glm::inverse(view) * glm::vec4(light_view, 0.0f)));
 }
 
+// Frame-wide bounds for the refinement's early out: every point lies on the render mesh, so
+// its clip w is at least the smallest of the mesh's vertices; the relevance radii say how much
+// any neighbourhood is stretched (region ratio), doubled for safety.
+RefinementBound refinement_bound(const Pipeline& p) {
+    const Asset& a = *p.asset;
+    const glm::mat4& m = p.view_projection;
+    const glm::vec4 row_w(m[0][3], m[1][3], m[2][3], m[3][3]);
+    RefinementBound b;
+    b.min_w = 1e30f;
+    for (uint32_t i = 0; i < a.mesh.vertex_count; ++i)
+        b.min_w = std::min(b.min_w, glm::dot(row_w, glm::vec4(p.vertex_positions[i * 3],
+                                                                p.vertex_positions[i * 3 + 1],
+                                                                p.vertex_positions[i * 3 + 2], 1.0f)));
+    b.max_stretch = 1.0f;
+    if (p.config.relevance_update) {
+        float ratio = 1.0f;
+        for (uint32_t i = 0; i < a.points.point_count; ++i) {
+            const float bind = a.points.radius[i];
+            if (bind > 0.0f) ratio = std::max(ratio, p.radius[i] / bind);
+        }
+        b.max_stretch = 2.0f * ratio * ratio;
+    }
+    return b;
+}
+
 // Baked points enough for their own triangulation to be the refinement's domain.
 constexpr uint32_t kMinTriangulatedPoints = 256;
 
@@ -357,16 +382,18 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
         extra.radius = p->radius.get() + baked;
         extra.triangle = p->refined_triangle.get();
         extra.index = p->refined_index.get();
+        const RefinementBound bound = refinement_bound(*p);
         if (p->refine_on_points) {  // corners are the baked points, as placed this frame
             MeshView domain = p->refinement_domain;
             domain.positions = p->point_positions.get();
             domain.normals = p->point_normals.get();  // double-sided ones already face the eye
             refine_points(&p->refinement, domain, domain.positions, domain.normals, nullptr,
-                          p->size_params, p->config.relevance_update, &extra, &p->refinement_stats);
+                          p->size_params, p->config.relevance_update, &extra, &p->refinement_stats,
+                          &bound);
         } else {
             refine_points(&p->refinement, a.mesh, p->vertex_positions.get(), p->vertex_normals.get(),
                           a.sides.triangle_double_sided, p->size_params, p->config.relevance_update,
-                          &extra, &p->refinement_stats);
+                          &extra, &p->refinement_stats, &bound);
         }
         p->refined_count = extra.count;
     }

@@ -237,8 +237,16 @@ bool refinement_init(RefinementMesh* r, const MeshView& mesh, const PointsView& 
             first[size_t(t) * 3 + d] = b.x * mesh.positions[tri[0] * 3 + d] + b.y * mesh.positions[tri[1] * 3 + d] +
                                        (1.0f - b.x - b.y) * mesh.positions[tri[2] * 3 + d];
     }
-    return first_point_phases(n, first.get(), r->bind_area.get(), points.point_count,
-                              bind_point_positions, r->phase.get());
+    if (!first_point_phases(n, first.get(), r->bind_area.get(), points.point_count,
+                            bind_point_positions, r->phase.get()))
+        return false;
+    // The lowest density at which any triangle gets its first extra point (or starts the
+    // hand-over): below it a frame needs no refinement at all (refinement_needed).
+    r->min_threshold = r->hand_over ? kHandOverStart * r->finest_density : 1e30f;
+    for (uint32_t t = 0; t < n; ++t)
+        if (r->bind_area[t] > 0.0f)
+            r->min_threshold = std::min(r->min_threshold, r->density[t] + r->phase[t] / r->bind_area[t]);
+    return true;
 }
 
 
@@ -260,10 +268,22 @@ float near_plane_w(const SizeParams& params) {
 
 void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positions,
                    const float* normals, const uint8_t* double_sided, const SizeParams& params,
-                   bool stretch, RefinedPoints* out, RefinementStats* stats) {
+                   bool stretch, RefinedPoints* out, RefinementStats* stats,
+                   const RefinementBound* bound) {
     out->count = 0;
+    if (bound && !refinement_needed(*r, params, *bound)) {
+        if (r->hand_over) std::fill(r->fade.get(), r->fade.get() + r->triangle_count, 1.0f);
+        if (stats) *stats = RefinementStats();
+        return;
+    }
     const glm::mat4& m = params.view_projection;
     const InkTable ink(params);
+    const float focal = focal_pixels(params);
+    const float dot_area = 0.785398163f * params.max_point_size * params.max_point_size;
+    const float focal2_over_dot = focal * focal / dot_area;
+    const float near_w = near_plane_w(params);
+    // Largest area stretch of any triangle, for the quick per-triangle test.
+    const float stretch_bound = !stretch ? 1.0f : (bound ? bound->max_stretch : 1e30f);
     for (uint32_t i = 0; i < mesh.vertex_count; ++i) {
         const glm::vec3 p(positions[i * 3], positions[i * 3 + 1], positions[i * 3 + 2]);
         const glm::vec3 n(normals[i * 3], normals[i * 3 + 1], normals[i * 3 + 2]);
@@ -277,11 +297,9 @@ void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positio
         const float lit = glm::dot(n, params.light_direction);
         r->vertex[i].need = n_dot_v > 0.0f ? n_dot_v * ink.at(lit) : 0.0f;
         r->vertex[i].need_back = n_dot_v < 0.0f ? -n_dot_v * ink.at(-lit) : 0.0f;
+        const float w = std::max(c.w, near_w);
+        r->vertex[i].density = r->vertex[i].need * focal2_over_dot / (w * w);
     }
-    const float max_size = params.max_point_size;
-    const float dot_area = 0.785398163f * max_size * max_size;
-    const float focal = focal_pixels(params);
-
     Traversal s;
     s.r = r;
     s.mesh = &mesh;
@@ -290,8 +308,8 @@ void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positio
     s.vertex = r->vertex.get();
     s.double_sided = double_sided;
     s.eye = params.eye;
-    s.near_w = near_plane_w(params);
-    s.focal2_over_dot = focal * focal / dot_area;
+    s.near_w = near_w;
+    s.focal2_over_dot = focal2_over_dot;
     s.out = out;
     // Once with every count whole; if the budget binds, again with every count scaled so the
     // frame fits (each triangle keeps its coarsest extra points).
@@ -315,15 +333,21 @@ void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positio
             const RefinementVertex& b = r->vertex[tri[1]];
             const RefinementVertex& c = r->vertex[tri[2]];
             if (a.outside & b.outside & c.outside) continue;  // off one side of the view
-            float need = std::max({a.need, b.need, c.need});
-            if (double_sided && double_sided[t]) need = std::max({need, a.need_back, b.need_back, c.need_back});
-            if (!(need > 0.0f)) continue;
-            const float w = std::max(std::min({a.clip.w, b.clip.w, c.clip.w}), s.near_w);
-            const float density = need * s.focal2_over_dot / (w * w);
+            const bool two_sided = double_sided && double_sided[t];
             const float baked = r->density[t];
             const float first = r->phase[t] / (area * s.scale);
             const float lower = r->hand_over ? std::min(baked + first, kHandOverStart * r->finest_density)
                                              : baked + first;
+            // Quickest out: the corners' own densities (with a margin for a larger one inside
+            // the triangle) times the frame's largest stretch.
+            if (!two_sided &&
+                1.25f * std::max({a.density, b.density, c.density}) * stretch_bound < lower)
+                continue;
+            float need = std::max({a.need, b.need, c.need});
+            if (two_sided) need = std::max({need, a.need_back, b.need_back, c.need_back});
+            if (!(need > 0.0f)) continue;
+            const float w = std::max(std::min({a.clip.w, b.clip.w, c.clip.w}), s.near_w);
+            const float density = need * s.focal2_over_dot / (w * w);
             float stretched = density;
             if (!stretch) {
                 if (density < lower) continue;
@@ -355,6 +379,19 @@ void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positio
         stats->generated = out->count;
         stats->budget_scale = s.scale;
     }
+}
+
+bool refinement_needed(const RefinementMesh& r, const SizeParams& params, const RefinementBound& bound) {
+    // The largest density the size rule can ask for anywhere: full ink, N.V = 1, the nearest
+    // depth; against the smallest first-point threshold of any triangle.
+    const InkTable ink(params);
+    float ink_max = 0.0f;
+    for (float v : ink.ink) ink_max = std::max(ink_max, v);
+    const float focal = focal_pixels(params);
+    const float dot_area = 0.785398163f * params.max_point_size * params.max_point_size;
+    const float w = std::max(bound.min_w, near_plane_w(params));
+    const float density = ink_max * focal * focal / dot_area / (w * w);
+    return density * bound.max_stretch >= r.min_threshold;
 }
 
 void fade_baked_points(const RefinementMesh& r, const PointsView& points, float* size) {
