@@ -10,7 +10,7 @@ namespace stipple {
 
 namespace {
 
-constexpr int kMaxCandidates = 32;
+constexpr int kMaxCandidates = 16;
 constexpr int kMaxVertices = 4 + kMaxCandidates + 4;
 
 // A convex polygon in the tangent plane; label[m] names the candidate whose bisector made the
@@ -56,11 +56,11 @@ bool triangulate_points(uint32_t count, const float* positions, const float* nor
     *out = PointTriangulation();
     if (count < 3 || !(area > 0.0)) return true;
     const float spacing = float(std::sqrt(area / double(count)));
-    const float reach = 3.0f * spacing;
+    const float reach = 2.2f * spacing;
     SpatialGrid grid;
     const size_t capacity = size_t(count) * 3;
     std::unique_ptr<uint32_t[]> tris(new (std::nothrow) uint32_t[capacity * 3]);
-    if (!tris || !grid.build(positions, count, spacing, nullptr)) return false;
+    if (!tris || !grid.build(positions, count, reach, nullptr)) return false;
     uint32_t made = 0;
     Candidate candidates[kMaxCandidates];
     for (uint32_t i = 0; i < count && made < capacity; ++i) {

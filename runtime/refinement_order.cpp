@@ -78,8 +78,8 @@ bool first_point_phases(uint32_t triangle_count, const float* first_points, cons
         heap.item = array<uint32_t>(n);
         heap.slot = array<uint32_t>(n);
         heap.key = dist.get();
-        if (!dist || !heap.item || !heap.slot || !baked_grid.build(baked, baked_count, spacing, nullptr) ||
-            !tri_grid.build(first_points, n, spacing, area))
+        if (!dist || !heap.item || !heap.slot || !baked_grid.build(baked, baked_count, reach, nullptr) ||
+            !tri_grid.build(first_points, n, 1.5f * spacing, area))
             return false;
         for (uint32_t t = 0; t < n; ++t) {
             heap.slot[t] = ~0u;
