@@ -4,14 +4,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
-#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <queue>
+#include <utility>
 
 #include "bake/bake_random.h"
 #include "bake/level_order.h"
 #include "bake/point_grid.h"
-#include "bake/silhouette_edges.h"
-#include "runtime/asset_format.h"
+#include "runtime/asset_format.h"  // kNoFace
 
 namespace stipple::bake {
 
@@ -128,49 +129,133 @@ Samples sample_surface(const Triangles& t, uint64_t count, Rng* rng) {
 }
 
 // Open surfaces. Where a surface ends, its samples have fewer neighbours, weigh less and
-// outlive the others: every prefix is denser along the boundary (SimpleSkin, a plane, at
-// 20k points: 1.5-1.7x the mean density within half a spacing of its border). Yuksel 2015
-// notes this for bounded domains; here the surface is continued across its boundary, as far
-// as `width`, by a mirror image of itself sampled independently ("ghosts"): the samples
-// near a boundary then have the neighbours they would have if the surface went on, and the
-// ghosts are eliminated like the others but never become points. Mirroring the real samples
-// themselves instead is not enough: a sample near the edge sees its neighbours' images,
-// but not its own, and the images of the samples on the edge lie on them, so the edge stays
-// the most favoured place (measured, docs/hierarchy.md).
+// outlive the others: every prefix is denser along the boundary (a plane at 20k points:
+// 1.5-1.7x the mean density within half a spacing of its border, docs/hierarchy.md). Yuksel
+// 2015 notes this for bounded domains. Here the surface is continued across its boundary,
+// `width` deep, by its mirror image, sampled independently: "ghost" samples, eliminated like
+// the others, that never become points. The samples near a boundary then have the
+// neighbours they would have if the surface went on. (Mirroring the real samples instead,
+// in their weights, is not enough: a sample sees its neighbours' images but not its own, so
+// the samples on the edge, whose images are themselves, count double for their neighbours
+// and crowd the edge (4.8x within 1/8 spacing); counting its own image too empties a band of
+// a quarter spacing along the edge. Measured, docs/hierarchy.md.)
 //
-// The boundary: the edges of one face once the input is welded by position
-// (bake/silhouette_edges.h, so UV and normal seams are not edges of one face). Each has the
+// The boundary: the edges of one face once the input is welded by exact position (as
+// bake/silhouette_edges.h does, so UV and normal seams are not edges of one face). Each has the
 // unit direction in its face's plane, perpendicular to the edge, pointing away from the
 // face: the normal of the plane the surface near it is mirrored across. Degenerate faces'
 // edges are left out (no direction; they have no samples).
 struct Boundary {
     std::vector<Vec3> a, b, out, face_normal;
+    std::vector<uint32_t> face;
     double length = 0;
+    // Per triangle, the triangles across its edges (kNoFace: none), 3 each; only if there
+    // is a boundary.
+    std::vector<uint32_t> across;
     uint32_t size() const { return uint32_t(a.size()); }
 };
 
+// Open-addressing hash tables (linear probing) for welding and edge matching: O(n), and the
+// results do not depend on the table's order (everything is emitted in face order).
+uint64_t mix(uint64_t x) {
+    x ^= x >> 33;
+    x *= 0xFF51AFD7ED558CCDull;
+    x ^= x >> 33;
+    x *= 0xC4CEB9FE1A85EC53ull;
+    return x ^ (x >> 33);
+}
+
+size_t table_size(size_t n) {
+    size_t size = 16;
+    while (size < 2 * n) size *= 2;
+    return size;
+}
+
+// Vertex classes by exact position (-0 and +0 alike), as bake/silhouette_edges.h welds.
+std::vector<uint32_t> weld_by_position(const RawScene& s) {
+    const size_t n = s.vertex_count();
+    struct Slot {
+        uint32_t bits[3];
+        uint32_t id = 0xFFFFFFFFu;
+    };
+    std::vector<Slot> table(table_size(n));
+    const size_t mask = table.size() - 1;
+    std::vector<uint32_t> welded(n);
+    uint32_t next = 0;
+    for (size_t v = 0; v < n; ++v) {
+        uint32_t bits[3];
+        for (int k = 0; k < 3; ++k) {
+            const float x = s.positions[v * 3 + size_t(k)] + 0.0f;  // -0 -> +0
+            std::memcpy(&bits[k], &x, 4);
+        }
+        size_t h = size_t(mix(uint64_t(bits[0]) << 32 ^ uint64_t(bits[1]) << 16 ^ bits[2])) & mask;
+        while (table[h].id != 0xFFFFFFFFu &&
+               !(table[h].bits[0] == bits[0] && table[h].bits[1] == bits[1] &&
+                 table[h].bits[2] == bits[2]))
+            h = (h + 1) & mask;
+        if (table[h].id == 0xFFFFFFFFu) {
+            std::memcpy(table[h].bits, bits, sizeof bits);
+            table[h].id = next++;
+        }
+        welded[v] = table[h].id;
+    }
+    return welded;
+}
+
 Boundary boundary_of(const RawScene& s, const Triangles& t) {
     Boundary e;
-    const std::vector<uint32_t> edges = silhouette_edges(s);
-    for (size_t k = 0; k < edges.size(); k += 4) {
-        if (edges[k + 3] != format::kNoFace) continue;
-        const uint32_t f = edges[k + 2];
-        const Vec3 n = t.normal[f];
-        if (!(n.sqrnorm() > 0)) continue;
-        const float* pa = &s.positions[size_t(edges[k]) * 3];
-        const float* pb = &s.positions[size_t(edges[k + 1]) * 3];
-        const Vec3 a(pa[0], pa[1], pa[2]), b(pb[0], pb[1], pb[2]);
-        Vec3 out = (b - a) % n;
-        if (!(out.norm() > 0)) continue;
-        out /= out.norm();
-        const Vec3* c = &t.corner[size_t(f) * 3];
-        if ((out | ((c[0] + c[1] + c[2]) / 3 - a)) > 0) out = -out;
-        e.a.push_back(a);
-        e.b.push_back(b);
-        e.out.push_back(out);
-        e.face_normal.push_back(n);
-        e.length += (b - a).norm();
-    }
+    const uint32_t faces = uint32_t(s.triangle_count());
+    const std::vector<uint32_t> welded = weld_by_position(s);
+    // Every edge of positive length: how many faces it has, and the first two.
+    struct Slot {
+        uint64_t key = ~0ull;
+        uint32_t first = 0, second = 0, count = 0;
+    };
+    std::vector<Slot> table(table_size(size_t(faces) * 3 / 2 + 1));
+    const size_t mask = table.size() - 1;
+    // Pass 1: count; pass 2 (in face order): boundary edges and the faces across.
+    std::vector<uint32_t> at(size_t(faces) * 3, 0xFFFFFFFFu);
+    for (uint32_t f = 0; f < faces; ++f)
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t a = welded[s.indices[size_t(f) * 3 + size_t(k)]];
+            const uint32_t b = welded[s.indices[size_t(f) * 3 + size_t((k + 1) % 3)]];
+            if (a == b) continue;
+            const uint64_t key = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
+            size_t h = size_t(mix(key)) & mask;
+            while (table[h].count && table[h].key != key) h = (h + 1) & mask;
+            Slot& x = table[h];
+            x.key = key;
+            if (x.count == 0) x.first = f;
+            if (x.count == 1) x.second = f;
+            ++x.count;
+            at[size_t(f) * 3 + size_t(k)] = uint32_t(h);
+        }
+    std::vector<uint32_t> across(size_t(faces) * 3, format::kNoFace);
+    for (uint32_t f = 0; f < faces; ++f)
+        for (int k = 0; k < 3; ++k) {
+            if (at[size_t(f) * 3 + size_t(k)] == 0xFFFFFFFFu) continue;
+            const Slot& x = table[at[size_t(f) * 3 + size_t(k)]];
+            if (x.count == 2) {  // manifold: the face across
+                across[size_t(f) * 3 + size_t(k)] = x.first == f ? x.second : x.first;
+                continue;
+            }
+            if (x.count != 1) continue;  // non-manifold: neither boundary nor across
+            const Vec3 n = t.normal[f];
+            if (!(n.sqrnorm() > 0)) continue;
+            const Vec3* c = &t.corner[size_t(f) * 3];
+            const Vec3 a = c[k], b = c[(k + 1) % 3];
+            Vec3 out = (b - a) % n;
+            if (!(out.norm() > 0)) continue;
+            out /= out.norm();
+            if ((out | ((c[0] + c[1] + c[2]) / 3 - a)) > 0) out = -out;
+            e.a.push_back(a);
+            e.b.push_back(b);
+            e.out.push_back(out);
+            e.face_normal.push_back(n);
+            e.face.push_back(f);
+            e.length += (b - a).norm();
+        }
+    if (e.size() > 0) e.across = std::move(across);
     return e;
 }
 
@@ -178,115 +263,160 @@ constexpr uint32_t kNoEdge = 0xFFFFFFFFu;
 
 // Appends to *s the ghosts of the boundary: samples at `density` per unit area, uniform on
 // the triangles within `width` of a boundary edge (the same systematic sampling as the
-// surface's, with its own random numbers), each mirrored across the plane of its nearest
-// boundary edge (on its side of the surface: normals less than ~120 degrees apart; and within
-// 45 degrees of the edge's face's inward direction, so that another part passing near an
-// edge is not mirrored). A ghost is dropped where a real sample lies beyond the plane nearer
-// to it than the plane is: there the surface goes on (a crack, a part that meets another, a
-// concave corner, the far side of a small hole), and the mirror image would lie on it.
-void add_ghosts(const Triangles& t, const Boundary& edges, double density, double width,
-                Rng* rng, Samples* s) {
+// surface's, with their own random numbers), each mirrored across the plane of its nearest
+// boundary edge. Nearest over the surface: each triangle near the boundary gets the edge
+// nearest to its centroid, passed on from triangle to neighbouring triangle (nearest first,
+// Dijkstra), so that another part that passes near an edge is not mirrored; a sample takes
+// the nearest of its triangle's, its neighbours' and its own boundary edges. Edges count only
+// on the sample's side of the surface (normals less than ~120 degrees apart) and within 45
+// degrees of the edge's face's inward direction. A ghost is dropped where a real sample lies
+// beyond the plane nearer to it than the plane (give or take the spacing of the samples
+// tested): there the surface goes on (a crack, a part that meets another, a concave corner,
+// the far side of a hole), and the mirror image would lie on it.
+void add_ghosts(const Triangles& t, const Boundary& edges, double density, double width, Rng* rng,
+                Samples* s) {
     if (edges.size() == 0 || !(width > 0)) return;
-    // The edges cut into pieces at most width / 2 long, in a grid of cell `width`.
-    std::vector<double> piece_xyz;
-    std::vector<uint32_t> piece_edge, first_piece(size_t(edges.size()) + 1, 0);
-    for (uint32_t e = 0; e < edges.size(); ++e) {
-        const Vec3 ab = edges.b[e] - edges.a[e];
-        const uint32_t k = uint32_t(std::max(1.0, std::ceil(ab.norm() / (0.5 * width))));
-        for (uint32_t q = 0; q < k; ++q) {
-            const Vec3 c = edges.a[e] + ab * ((q + 0.5) / k);
-            piece_xyz.insert(piece_xyz.end(), {c[0], c[1], c[2]});
-            piece_edge.push_back(e);
-        }
-        first_piece[e + 1] = uint32_t(piece_edge.size());
-    }
-    PointGrid pieces;
-    pieces.build(piece_xyz.data(), uint32_t(piece_edge.size()), width);
+    const uint32_t faces = uint32_t(t.area.size());
     auto segment_point = [&](uint32_t e, const Vec3& p, double* h) {
         const Vec3 ab = edges.b[e] - edges.a[e];
         const double len2 = ab.sqrnorm();
         *h = len2 > 0 ? std::clamp(((p - edges.a[e]) | ab) / len2, 0.0, 1.0) : 0.0;
         return edges.a[e] + ab * *h;
     };
-    // Triangles within `width` of an edge: by their centroid, or larger than `width`.
-    std::vector<char> near(t.area.size(), 0);
-    for (uint32_t f = 0; f < uint32_t(t.area.size()); ++f) {
-        if (!(t.area[f] > 0)) continue;
+    auto same_side = [&](uint32_t f, uint32_t e) {
+        return (t.normal[f] | edges.face_normal[e]) > kSameSideDot;
+    };
+    // Triangles within `width` of the boundary over the surface, each with its edge.
+    std::vector<uint32_t> label(faces, kNoEdge);
+    std::vector<double> reach(faces, 0), best(faces, 1e300);
+    std::vector<Vec3> centre(faces);
+    for (uint32_t f = 0; f < faces; ++f) {
         const Vec3* c = &t.corner[size_t(f) * 3];
-        const Vec3 centre = (c[0] + c[1] + c[2]) / 3;
-        const double radius = std::max({(c[0] - centre).norm(), (c[1] - centre).norm(),
-                                        (c[2] - centre).norm()});
-        if (radius > width) {
-            near[f] = 1;
-            continue;
+        centre[f] = (c[0] + c[1] + c[2]) / 3;
+        reach[f] = width + std::max({(c[0] - centre[f]).norm(), (c[1] - centre[f]).norm(),
+                                     (c[2] - centre[f]).norm()});
+    }
+    using Entry = std::pair<double, uint32_t>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
+    auto offer = [&](uint32_t f, uint32_t e) {
+        if (!(t.area[f] > 0) || !same_side(f, e)) return;
+        double h;
+        const double d = (segment_point(e, centre[f], &h) - centre[f]).norm();
+        if (d > reach[f] || d > best[f] || (d == best[f] && e >= label[f])) return;
+        best[f] = d;
+        label[f] = e;
+        open.push({d, f});
+    };
+    std::vector<uint32_t> own_first(size_t(faces) + 1, 0), own(edges.size());
+    for (uint32_t e = 0; e < edges.size(); ++e) ++own_first[edges.face[e] + 1];
+    for (uint32_t f = 0; f < faces; ++f) own_first[f + 1] += own_first[f];
+    {
+        std::vector<uint32_t> at(own_first.begin(), own_first.end() - 1);
+        for (uint32_t e = 0; e < edges.size(); ++e) own[at[edges.face[e]]++] = e;
+    }
+    for (uint32_t e = 0; e < edges.size(); ++e) offer(edges.face[e], e);
+    while (!open.empty()) {
+        const auto [d, f] = open.top();
+        open.pop();
+        if (d != best[f]) continue;
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t g = edges.across[size_t(f) * 3 + size_t(k)];
+            if (g != format::kNoFace) offer(g, label[f]);
         }
-        const double q[3] = {centre[0], centre[1], centre[2]}, reach = width + radius;
-        pieces.visit(q, 3, [&](uint32_t k) {
-            double h;
-            if (!near[f] && (segment_point(piece_edge[k], centre, &h) - centre).sqrnorm() <=
-                                reach * reach)
-                near[f] = 1;
-        });
     }
-    // Real samples beyond each piece's plane, near enough to hide one of its ghosts.
-    PointGrid reals;
+    // The edges cut into pieces at most width / 2 long, each with the real samples beyond
+    // its plane that could hide one of its ghosts: the samples thinned to a spacing of
+    // about width / 8 (every m-th of the systematic sampling is an even sampling too).
+    std::vector<double> piece_xyz;
+    std::vector<uint32_t> first_piece(size_t(edges.size()) + 1, 0);
+    for (uint32_t e = 0; e < edges.size(); ++e) {
+        const Vec3 ab = edges.b[e] - edges.a[e];
+        const uint32_t k = uint32_t(std::max(1.0, std::ceil(ab.norm() / (0.5 * width))));
+        for (uint32_t q = 0; q < k; ++q) {
+            const Vec3 c = edges.a[e] + ab * ((q + 0.5) / k);
+            piece_xyz.insert(piece_xyz.end(), {c[0], c[1], c[2]});
+        }
+        first_piece[e + 1] = first_piece[e] + k;
+    }
     const uint32_t n = s->size();
-    reals.build(s->xyz.data(), n, 1.25 * width);
-    std::vector<uint32_t> beyond_first(piece_edge.size() + 1, 0), beyond;
-    for (uint32_t k = 0; k < uint32_t(piece_edge.size()); ++k) {
-        const uint32_t e = piece_edge[k];
-        const Vec3 mid(piece_xyz[size_t(k) * 3], piece_xyz[size_t(k) * 3 + 1],
-                       piece_xyz[size_t(k) * 3 + 2]);
-        reals.visit(&piece_xyz[size_t(k) * 3], 2, [&](uint32_t i) {
-            const Vec3 r(s->xyz[size_t(i) * 3], s->xyz[size_t(i) * 3 + 1], s->xyz[size_t(i) * 3 + 2]);
-            if (((r - edges.a[e]) | edges.out[e]) > 1e-9 * width &&
-                (t.normal[s->host[i]] | edges.face_normal[e]) > kSameSideDot &&
-                (r - mid).sqrnorm() <= 4.5 * width * width)
-                beyond.push_back(i);
-        });
-        beyond_first[k + 1] = uint32_t(beyond.size());
+    const uint32_t stride =
+        uint32_t(std::max(1.0, std::floor(double(n) / (64 * t.total / (width * width)))));
+    const double slack = std::sqrt(t.total * stride / double(n));
+    std::vector<double> thin_xyz;
+    std::vector<uint32_t> thin_host;
+    for (uint32_t i = 0; i < n; i += stride) {
+        thin_host.push_back(s->host[i]);
+        thin_xyz.insert(thin_xyz.end(), s->xyz.begin() + std::ptrdiff_t(i) * 3,
+                        s->xyz.begin() + std::ptrdiff_t(i) * 3 + 3);
     }
-    // The sources: systematic sampling over the near triangles, then mirrored.
+    // A ghost is within 1.04 width of its piece's midpoint, and looks as far as width + slack.
+    const double look = 2.05 * width + slack;
+    PointGrid thinned;
+    thinned.build(thin_xyz.data(), uint32_t(thin_host.size()), look);
+    // Each piece's list is sorted by the distance beyond the plane: a ghost `depth` beyond it
+    // is hidden only by samples less than 2 depth + slack beyond.
+    std::vector<uint32_t> beyond_first(size_t(first_piece.back()) + 1, 0);
+    std::vector<std::pair<double, uint32_t>> beyond;
+    for (uint32_t e = 0; e < edges.size(); ++e)
+        for (uint32_t k = first_piece[e]; k < first_piece[e + 1]; ++k) {
+            const Vec3 mid(piece_xyz[size_t(k) * 3], piece_xyz[size_t(k) * 3 + 1],
+                           piece_xyz[size_t(k) * 3 + 2]);
+            thinned.visit(&piece_xyz[size_t(k) * 3], 1, [&](uint32_t j) {
+                const Vec3 r(thin_xyz[size_t(j) * 3], thin_xyz[size_t(j) * 3 + 1],
+                             thin_xyz[size_t(j) * 3 + 2]);
+                const double past = (r - edges.a[e]) | edges.out[e];
+                if (past > 1e-9 * width && same_side(thin_host[j], e) &&
+                    (r - mid).sqrnorm() <= look * look)
+                    beyond.push_back({past, j});
+            });
+            std::sort(beyond.begin() + beyond_first[k], beyond.end());
+            beyond_first[k + 1] = uint32_t(beyond.size());
+        }
+    // The sources: systematic sampling over the triangles near the boundary, then mirrored.
     const double offset = rng->uniform();
     double running = 0;
     uint64_t made = 0;
-    for (uint32_t f = 0; f < uint32_t(t.area.size()); ++f) {
-        if (!near[f]) continue;
+    std::vector<uint32_t> candidates;
+    for (uint32_t f = 0; f < faces; ++f) {
+        if (label[f] == kNoEdge) continue;
         running += t.area[f] * density;
         const uint64_t upto = uint64_t(std::floor(running + offset));
+        candidates.assign(own.begin() + own_first[f], own.begin() + own_first[f + 1]);
+        candidates.push_back(label[f]);
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t g = edges.across[size_t(f) * 3 + size_t(k)];
+            if (g != format::kNoFace && label[g] != kNoEdge) candidates.push_back(label[g]);
+        }
         const Vec3* corner = &t.corner[size_t(f) * 3];
         for (; made < upto; ++made) {
             const double r1 = std::sqrt(rng->uniform()), r2 = rng->uniform();
             const double a = 1 - r1, b = r1 * (1 - r2);
             const Vec3 p = corner[0] * a + corner[1] * b + corner[2] * (1 - a - b);
-            uint32_t best = kNoEdge;
-            double best_d2 = width * width, best_h = 0;
-            const double q[3] = {p[0], p[1], p[2]};
-            pieces.visit(q, 2, [&](uint32_t k) {
-                const uint32_t e = piece_edge[k];
-                if ((t.normal[f] | edges.face_normal[e]) <= kSameSideDot) return;
+            uint32_t edge = kNoEdge;
+            double edge_d2 = width * width, edge_h = 0;
+            for (uint32_t e : candidates) {
+                if (!same_side(f, e)) continue;
                 double h;
                 const Vec3 v = p - segment_point(e, p, &h);
                 const double d2 = v.sqrnorm();
-                if (d2 > best_d2 || (d2 == best_d2 && e >= best)) return;
+                if (d2 > edge_d2 || (d2 == edge_d2 && e >= edge)) continue;
                 if (-(v | edges.out[e]) + 1e-9 * width < std::fabs(v | edges.face_normal[e]))
-                    return;  // not on the surface this edge bounds
-                best = e;
-                best_d2 = d2;
-                best_h = h;
-            });
-            if (best == kNoEdge) continue;
-            const double depth = -((p - edges.a[best]) | edges.out[best]);
-            const Vec3 g = p + edges.out[best] * (2 * depth);
-            const uint32_t pieces_of_edge = first_piece[best + 1] - first_piece[best];
-            const uint32_t k = first_piece[best] +
-                               std::min(pieces_of_edge - 1, uint32_t(best_h * pieces_of_edge));
+                    continue;  // not on the surface this edge bounds
+                edge = e;
+                edge_d2 = d2;
+                edge_h = h;
+            }
+            if (edge == kNoEdge) continue;
+            const double depth = -((p - edges.a[edge]) | edges.out[edge]);
+            const Vec3 g = p + edges.out[edge] * (2 * depth);
+            const uint32_t pieces = first_piece[edge + 1] - first_piece[edge];
+            const uint32_t k = first_piece[edge] + std::min(pieces - 1, uint32_t(edge_h * pieces));
             bool hidden = false;
-            for (uint32_t j = beyond_first[k]; j < beyond_first[k + 1] && !hidden; ++j) {
-                const uint32_t i = beyond[j];
-                const Vec3 r(s->xyz[size_t(i) * 3], s->xyz[size_t(i) * 3 + 1],
-                             s->xyz[size_t(i) * 3 + 2]);
-                hidden = (r - g).sqrnorm() < depth * depth;
+            for (uint32_t j = beyond_first[k];
+                 j < beyond_first[k + 1] && beyond[j].first < 2 * depth + slack && !hidden; ++j) {
+                const size_t r = size_t(beyond[j].second) * 3;
+                hidden = (Vec3(thin_xyz[r], thin_xyz[r + 1], thin_xyz[r + 2]) - g).norm() <
+                         depth + slack;
             }
             if (hidden) continue;
             s->xyz.insert(s->xyz.end(), {g[0], g[1], g[2]});
@@ -399,8 +529,9 @@ void sort_by_cell(double cell, Samples* s) {
 }
 
 // One elimination (Yuksel 2015, the greedy algorithm with a heap): from the samples *s down to
-// `target`, the one of largest weight first, subtracting its contribution from its neighbours'
-// weights. *s keeps the survivors (sorted by cell); `gone`, if not null, gets the others in the
+// `target` real ones, the one of largest weight first, subtracting its contribution from its
+// neighbours' weights. Ghosts (add_ghosts) go the same way but do not count. *s keeps the
+// survivors, ghosts too (sorted by cell); `gone`, if not null, gets the real others in the
 // order they went. Reports progress as phase "eliminate" going from `from` to `to`.
 void eliminate(const Triangles& t, double area, uint32_t target, Samples* s, Samples* gone,
                const HierarchyConfig& config, float from, float to) {
@@ -463,7 +594,8 @@ void eliminate(const Triangles& t, double area, uint32_t target, Samples* s, Sam
     const uint8_t* ghost = s->ghost.data();
     for (uint32_t left = reals; left > target;) {
         if ((left & 0xFFFF) == 0)
-            config.report("eliminate", from + (to - from) * float(reals - left) / float(reals - target));
+            config.report("eliminate",
+                          from + (to - from) * float(reals - left) / float(reals - target));
         const uint32_t i = heap.pop();
         alive[i] = 0;
         if (!ghost[i]) {  // ghosts go like the others, but are not part of the order
@@ -486,14 +618,19 @@ void eliminate(const Triangles& t, double area, uint32_t target, Samples* s, Sam
     s->select(kept);
 }
 
-// How far the surface is continued across its boundary. The ghosts must reach past the
-// neighbourhood of the boundary's samples at every halving that matters, and the boundary of
-// the ghosts (as dense as any boundary) must stay out of reach of the real samples: a few
-// spacings of the coarsest prefixes drawn. At most a strip of half the surface's area.
+// How deep the surface is continued across its boundary: 2 spacings of the 512-point prefix
+// (or of all the points, if fewer), at most a strip of half the surface's area. The ghosts'
+// own boundary is as crowded as any and must stay out of the real samples' reach at every
+// prefix that matters: a prefix is even at the boundary once the width is about half its
+// spacing or more (square, 0-0.5 spacing band, 60 / 125 / 250 / 500 points, width in
+// spacings of 512: 1/2 -> 0.63 / 0.66 / 0.85 / 1.00, 1 -> 0.88 / 1.01 / 1.07 / 1.00,
+// 2 -> 1.13 / 0.97 / 1.02 / 1.03). The ghosts cost (boundary length x width) / area more
+// samples, fewer where they are hidden: 34 % on SimpleSkin (a 1 x 2 plane), 5 % on
+// teapot.obj (its openings), 2 % on the bunny (holes in its base).
+constexpr double kGhostSpacings = 2, kGhostPrefix = 512;
+
 double ghost_width(double area, double boundary_length, uint32_t points) {
-    const double factor = std::getenv("GHOST_W") ? std::atof(std::getenv("GHOST_W")) : 3.0;
-    const double prefix = std::getenv("GHOST_N") ? std::atof(std::getenv("GHOST_N")) : 512.0;
-    const double w = factor * std::sqrt(area / std::min(double(points), prefix));
+    const double w = kGhostSpacings * std::sqrt(area / std::min(double(points), kGhostPrefix));
     return std::min(w, 0.5 * area / boundary_length);
 }
 
@@ -512,7 +649,8 @@ void eliminate_hierarchy(const RawScene& scene, const HierarchyConfig& config, P
     const Boundary boundary = boundary_of(scene, t);
     if (boundary.size() > 0) {
         Rng ghost_rng{config.seed ^ 0x67686F7374ull};  // its own numbers: "ghost"
-        add_ghosts(t, boundary, double(count) / t.total, ghost_width(t.total, boundary.length, n), &ghost_rng, &s);
+        add_ghosts(t, boundary, double(count) / t.total, ghost_width(t.total, boundary.length, n),
+                   &ghost_rng, &s);
     }
     // Down to the point count; the eliminated samples are not points.
     // The first elimination is ~3/4 of the work, the halvings the rest.

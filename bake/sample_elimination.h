@@ -6,6 +6,9 @@
 // order whose every prefix is evenly spread over the *surface*, whatever its triangulation:
 // points are never tied to input vertices or edge midpoints, so long thin triangles, fans
 // and rings of slivers leave no trace (docs/hierarchy.md, "Why simplify lines points up").
+// An open surface is continued across its boundary (edges of one face) by "ghost" samples
+// that are eliminated like the others but never become points, so that no prefix is denser
+// along the boundary (docs/hierarchy.md, "Open surfaces"); a closed mesh has none.
 //
 // The thesis's requirements of a hierarchy (§3.1.1, §4.5) are kept: each point is hosted on
 // an input triangle with barycentrics, the point of rank i gets the region area / (i + 1)

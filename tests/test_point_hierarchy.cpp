@@ -3,8 +3,9 @@
 // input surface with valid barycentrics and in-range neighbours, radii coarse to fine, the
 // same bytes for the same seed (in memory and from the CLI), evenly spread compared with
 // random points, randomization that folds nothing and makes no slivers, no crash on
-// malformed meshes; and the default's prefixes evenly spread on the surface of low-poly
-// meshes of long thin triangles (a cylinder of ring slivers, a fan, a 2-triangle plane).
+// malformed meshes; the default's prefixes evenly spread on the surface of low-poly
+// meshes of long thin triangles (a cylinder of ring slivers, a fan, a 2-triangle plane), and
+// as dense along the boundary of an open surface as inside it (and along a crack).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -365,6 +366,96 @@ TEST(PointHierarchy, DefaultPrefixesCoverATwoTrianglePlane) {
             if (x < nx && y < ny) ++count[size_t(y * nx + x)];
         }
         EXPECT_EQ(std::count(count.begin(), count.end(), 0), 0) << "prefix " << n;
+    }
+}
+
+// A unit square of k x k quads (two triangles each) in the z = 0 plane; with `crack`, the
+// right half's vertices are moved right by `crack`, so the middle column is two boundaries
+// facing each other (not welded) while the surface goes on across them.
+RawScene open_square(int k, float crack = 0) {
+    RawScene s;
+    for (int half = 0; half < (crack > 0 ? 2 : 1); ++half) {
+        const uint32_t base = uint32_t(s.positions.size() / 3);
+        const int x0 = crack > 0 ? half * k / 2 : 0, x1 = crack > 0 ? x0 + k / 2 : k;
+        const int w = x1 - x0 + 1;
+        for (int y = 0; y <= k; ++y)
+            for (int x = x0; x <= x1; ++x)
+                s.positions.insert(s.positions.end(), {float(x) / float(k) + (half ? crack : 0.0f),
+                                                       float(y) / float(k), 0.0f});
+        for (int y = 0; y < k; ++y)
+            for (int x = 0; x < w - 1; ++x) {
+                const uint32_t a = base + uint32_t(y * w + x), b = a + 1, c = a + uint32_t(w),
+                               d = c + 1;
+                s.indices.insert(s.indices.end(), {a, b, d, a, d, c});
+            }
+    }
+    s.normals.assign(s.positions.size(), 0.0f);
+    return s;
+}
+
+// Point density within half a spacing sqrt(area / n) of the square's border (with
+// `middle`: of its middle line x = 0.5, farther than two spacings from the border), over the
+// density farther than two spacings from both, for the prefix of n of `points` points,
+// pooled over seeds 1-4.
+double band_density_ratio(const RawScene& s, uint32_t points, uint32_t n, bool middle) {
+    const double spacing = std::sqrt(1.0 / n);
+    auto classify = [&](double x, double y) {  // 1: band, 2: interior, 0: neither
+        const double border = std::min({x, y, 1 - x, 1 - y}), mid = std::fabs(x - 0.5);
+        if (middle ? mid < 0.5 * spacing && border >= 2 * spacing : border < 0.5 * spacing)
+            return 1;
+        return border >= 2 * spacing && (!middle || mid >= 2 * spacing) ? 2 : 0;
+    };
+    double count[3] = {0, 0, 0}, area[3] = {0, 0, 0};
+    const int kGrid = 500;  // areas on a fine grid
+    for (int i = 0; i < kGrid; ++i)
+        for (int j = 0; j < kGrid; ++j) area[classify((i + 0.5) / kGrid, (j + 0.5) / kGrid)] += 1;
+    for (uint64_t seed = 1; seed <= 4; ++seed) {
+        HierarchyConfig config;  // the default method
+        config.point_count = points;
+        config.seed = seed;
+        PointHierarchy p;
+        std::string error;
+        EXPECT_TRUE(build_point_hierarchy(s, config, &p, nullptr, &error)) << error;
+        const std::vector<double> xyz = point_positions(s, p);
+        for (uint32_t i = 0; i < n && i < p.size(); ++i)
+            count[classify(std::min(xyz[size_t(i) * 3], 1.0), xyz[size_t(i) * 3 + 1])] += 1;
+    }
+    return (count[1] / area[1]) / (count[2] / area[2]);
+}
+
+// Open surfaces: no prefix of the default method is denser along the boundary. Sample
+// elimination as such keeps the samples near a boundary (fewer neighbours, lower weights):
+// 1.5-1.7x the interior density within half a spacing of the square's border at every
+// prefix; the surface continued across the boundary by ghost samples makes it 0.95-1.05.
+TEST(PointHierarchy, DefaultPrefixesAreNotDenserAlongABoundary) {
+    const RawScene s = open_square(8);
+    for (uint32_t n : {250u, 1000u, 4000u}) {
+        const double ratio = band_density_ratio(s, 4000, n, false);
+        std::printf("prefix %u: density within half a spacing of the border / interior %.3f\n", n,
+                    ratio);
+        EXPECT_NEAR(ratio, 1.0, 0.15) << "prefix " << n;
+    }
+    // The ghosts have their own random numbers, from the seed: still the same bytes.
+    HierarchyConfig config;
+    config.point_count = 2000;
+    PointHierarchy a, b;
+    std::string error;
+    ASSERT_TRUE(build_point_hierarchy(s, config, &a, nullptr, &error)) << error;
+    ASSERT_TRUE(build_point_hierarchy(s, config, &b, nullptr, &error)) << error;
+    EXPECT_EQ(encode_asset(s, a), encode_asset(s, b));
+    expect_valid_hierarchy(s, a);
+}
+
+// Where the surface goes on across a boundary (a crack: two halves of a square, not
+// welded, 1e-5 apart), it is not continued by ghosts, which would lie on the other half and
+// thin out the points along the crack.
+TEST(PointHierarchy, DefaultPrefixesAreEvenAcrossACrack) {
+    const RawScene s = open_square(8, 1e-5f);
+    for (uint32_t n : {250u, 1000u, 4000u}) {
+        const double ratio = band_density_ratio(s, 4000, n, true);
+        std::printf("prefix %u: density near the border or the crack / interior %.3f\n", n,
+                    ratio);
+        EXPECT_NEAR(ratio, 1.0, 0.15) << "prefix " << n;
     }
 }
 
