@@ -323,8 +323,9 @@ using stipple::test::run;
 
 // A directory of two 64x48 frames with masks and dots; the directory name holds a quote and
 // a backslash, which the JSON output must escape.
-std::string make_frames_dir() {
-    const std::string dir = ::testing::TempDir() + "measure \"q\\ dir";
+std::string make_frames_dir(const std::string& test) {
+    // One directory per test: ctest runs tests in parallel processes.
+    const std::string dir = ::testing::TempDir() + "measure \"q\\ dir " + test;
     run("rm -rf '" + dir + "' && mkdir -p '" + dir + "'");
     const int w = 64, h = 48;
     std::vector<uint8_t> frame(size_t(w) * h * 4, 255), mask(size_t(w) * h * 4, 0);
@@ -362,7 +363,7 @@ nlohmann::json run_json(const std::string& args, int* rc = nullptr) {
 }
 
 TEST(MeasureCli, PrintsValidJsonForEveryCommand) {
-    const std::string dir = make_frames_dir();
+    const std::string dir = make_frames_dir("json");
     const std::string q = "'" + dir + "'";
     nlohmann::json j = run_json("tone " + q + "/frame_0000.png --mask " + q + "/mask_0000.png");
     EXPECT_NEAR(j["tone"].get<double>(), 0.5, 1e-6);
@@ -393,7 +394,7 @@ TEST(MeasureCli, PrintsValidJsonForEveryCommand) {
 // --contours: silhouette lines drawn inside the object (a --tone 0 frame with silhouettes)
 // count as outline, so a dot blinking next to an inner contour is no pop.
 TEST(MeasureCli, InnerContoursAreOutlinesForPops) {
-    const std::string dir = make_frames_dir();
+    const std::string dir = make_frames_dir("contours");
     const std::string lines = dir + "_lines";
     run("rm -rf '" + lines + "' && mkdir -p '" + lines + "'");
     const int w = 64, h = 48;
@@ -464,7 +465,7 @@ void expect_error(const std::string& args, const char* words) {
 }
 
 TEST(MeasureCli, BadInputIsAOneLineError) {
-    const std::string dir = make_frames_dir();
+    const std::string dir = make_frames_dir("errors");
     const std::string q = "'" + dir + "'";
     expect_error("", "no command");
     expect_error("frobnicate", "unknown command");
