@@ -188,29 +188,13 @@ void setup_camera(Pipeline* p) {
     s.light_direction = glm::normalize(glm::vec3(glm::inverse(view) * glm::vec4(light_view, 0.0f)));
 }
 
-// Frame-wide bounds for the refinement's early out: every point lies on the render mesh, so
-// its clip w is at least the smallest of the mesh's vertices; the relevance radii say how much
-// any neighbourhood is stretched (region ratio), doubled for safety.
-RefinementBound refinement_bound(const Pipeline& p) {
-    const Asset& a = *p.asset;
-    const glm::mat4& m = p.view_projection;
-    const glm::vec4 row_w(m[0][3], m[1][3], m[2][3], m[3][3]);
-    RefinementBound b;
-    b.min_w = 1e30f;
-    for (uint32_t i = 0; i < a.mesh.vertex_count; ++i)
-        b.min_w = std::min(b.min_w, glm::dot(row_w, glm::vec4(p.vertex_positions[i * 3],
-                                                                p.vertex_positions[i * 3 + 1],
-                                                                p.vertex_positions[i * 3 + 2], 1.0f)));
-    b.max_stretch = 1.0f;
-    if (p.config.relevance_update) {
-        float ratio = 1.0f;
-        for (uint32_t i = 0; i < a.points.point_count; ++i) {
-            const float bind = a.points.radius[i];
-            if (bind > 0.0f) ratio = std::max(ratio, p.radius[i] / bind);
-        }
-        b.max_stretch = 2.0f * ratio * ratio;
-    }
-    return b;
+// The finest quarter of the bake is where the run-time refinement takes over: extra points
+// can be drawn only where the size rule draws baked points of that region size, so while none
+// of them has a size (full views of a dense bake) the frame needs no refinement at all.
+bool hierarchy_running_out(const float* size, uint32_t baked) {
+    for (uint32_t i = baked - baked / 4; i < baked; ++i)
+        if (size[i] > 0.0f) return true;
+    return baked < 4;
 }
 
 // Baked points enough for their own triangulation to be the refinement's domain.
@@ -372,9 +356,13 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
     else
         std::memcpy(p->radius.get(), p->rest_radius.get(), size_t(baked) * 4);
     if (t) t->relevance += ms_since(&clock);
+    size_stipples(baked, p->point_positions.get(), p->point_normals.get(), p->radius.get(),
+                  p->size_params, p->size.get());
+    if (t) t->size += ms_since(&clock);
     // Where the baked hierarchy runs out, continue it (extra points after the baked ones).
     p->refined_count = 0;
-    if (p->config.refinement_budget > 0) {
+    p->refinement_stats = RefinementStats();
+    if (p->config.refinement_budget > 0 && hierarchy_running_out(p->size.get(), baked)) {
         RefinedPoints extra;
         extra.capacity = p->config.refinement_budget;
         extra.positions = p->point_positions.get() + size_t(baked) * 3;
@@ -382,26 +370,24 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
         extra.radius = p->radius.get() + baked;
         extra.triangle = p->refined_triangle.get();
         extra.index = p->refined_index.get();
-        const RefinementBound bound = refinement_bound(*p);
         if (p->refine_on_points) {  // corners are the baked points, as placed this frame
             MeshView domain = p->refinement_domain;
             domain.positions = p->point_positions.get();
             domain.normals = p->point_normals.get();  // double-sided ones already face the eye
             refine_points(&p->refinement, domain, domain.positions, domain.normals, nullptr,
-                          p->size_params, p->config.relevance_update, &extra, &p->refinement_stats,
-                          &bound);
+                          p->size_params, p->config.relevance_update, &extra, &p->refinement_stats);
         } else {
             refine_points(&p->refinement, a.mesh, p->vertex_positions.get(), p->vertex_normals.get(),
                           a.sides.triangle_double_sided, p->size_params, p->config.relevance_update,
-                          &extra, &p->refinement_stats, &bound);
+                          &extra, &p->refinement_stats);
         }
         p->refined_count = extra.count;
+        if (t) t->refine += ms_since(&clock);
+        size_stipples(extra.count, extra.positions, extra.normals, extra.radius, p->size_params,
+                      p->size.get() + baked);
+        fade_baked_points(p->refinement, a.points, p->size.get());
     }
-    if (t) t->refine += ms_since(&clock);
     const uint32_t count = baked + p->refined_count;
-    size_stipples(count, p->point_positions.get(), p->point_normals.get(), p->radius.get(),
-                  p->size_params, p->size.get());
-    if (p->config.refinement_budget > 0) fade_baked_points(p->refinement, a.points, p->size.get());
     // Only dots with a size go to the GPU: at 100k points a frame draws ~5k, and uploading
     // and vertex-shading the other 95% cost llvmpipe more than this compaction costs here.
     uint32_t drawn = 0;

@@ -240,12 +240,6 @@ bool refinement_init(RefinementMesh* r, const MeshView& mesh, const PointsView& 
     if (!first_point_phases(n, first.get(), r->bind_area.get(), points.point_count,
                             bind_point_positions, r->phase.get()))
         return false;
-    // The lowest density at which any triangle gets its first extra point (or starts the
-    // hand-over): below it a frame needs no refinement at all (refinement_needed).
-    r->min_threshold = r->hand_over ? kHandOverStart * r->finest_density : 1e30f;
-    for (uint32_t t = 0; t < n; ++t)
-        if (r->bind_area[t] > 0.0f)
-            r->min_threshold = std::min(r->min_threshold, r->density[t] + r->phase[t] / r->bind_area[t]);
     return true;
 }
 
@@ -268,14 +262,8 @@ float near_plane_w(const SizeParams& params) {
 
 void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positions,
                    const float* normals, const uint8_t* double_sided, const SizeParams& params,
-                   bool stretch, RefinedPoints* out, RefinementStats* stats,
-                   const RefinementBound* bound) {
+                   bool stretch, RefinedPoints* out, RefinementStats* stats) {
     out->count = 0;
-    if (bound && !refinement_needed(*r, params, *bound)) {
-        if (r->hand_over) std::fill(r->fade.get(), r->fade.get() + r->triangle_count, 1.0f);
-        if (stats) *stats = RefinementStats();
-        return;
-    }
     const glm::mat4& m = params.view_projection;
     const InkTable ink(params);
     const float focal = focal_pixels(params);
@@ -283,7 +271,7 @@ void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positio
     const float focal2_over_dot = focal * focal / dot_area;
     const float near_w = near_plane_w(params);
     // Largest area stretch of any triangle, for the quick per-triangle test.
-    const float stretch_bound = !stretch ? 1.0f : (bound ? bound->max_stretch : 1e30f);
+    const float stretch_bound = !stretch ? 1.0f : 1e30f;
     for (uint32_t i = 0; i < mesh.vertex_count; ++i) {
         const glm::vec3 p(positions[i * 3], positions[i * 3 + 1], positions[i * 3 + 2]);
         const glm::vec3 n(normals[i * 3], normals[i * 3 + 1], normals[i * 3 + 2]);
@@ -381,18 +369,6 @@ void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positio
     }
 }
 
-bool refinement_needed(const RefinementMesh& r, const SizeParams& params, const RefinementBound& bound) {
-    // The largest density the size rule can ask for anywhere: full ink, N.V = 1, the nearest
-    // depth; against the smallest first-point threshold of any triangle.
-    const InkTable ink(params);
-    float ink_max = 0.0f;
-    for (float v : ink.ink) ink_max = std::max(ink_max, v);
-    const float focal = focal_pixels(params);
-    const float dot_area = 0.785398163f * params.max_point_size * params.max_point_size;
-    const float w = std::max(bound.min_w, near_plane_w(params));
-    const float density = ink_max * focal * focal / dot_area / (w * w);
-    return density * bound.max_stretch >= r.min_threshold;
-}
 
 void fade_baked_points(const RefinementMesh& r, const PointsView& points, float* size) {
     if (!r.hand_over) return;  // the points domain continues the bake: no baked point fades

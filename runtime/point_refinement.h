@@ -62,7 +62,6 @@ struct RefinementMesh {
     std::unique_ptr<RefinementVertex[]> vertex;  // per vertex, rewritten every frame
     float finest_density = 0.0f;             // rho0: baked points per unit bind area, finest level
     bool hand_over = true;                   // baked points fade in close-ups (mesh domain)
-    float min_threshold = 0.0f;              // lowest density any triangle refines at
 };
 
 // Extra points of one frame, structure of arrays. Positions/normals/radius go straight into the
@@ -100,22 +99,9 @@ bool refinement_init(RefinementMesh* r, const MeshView& mesh, const PointsView& 
 // (3 floats each); `stretch` false keeps bind-pose regions (relevance updates off);
 // `double_sided` (per triangle, or null) marks triangles drawn from both sides, whose extra
 // points get their normal turned toward the viewer (runtime/double_sided.h).
-// Cheap bounds over the whole frame that let refine_points skip its per-vertex and
-// per-triangle passes when no triangle can need an extra point (full views): the smallest
-// clip-space w of the surface (e.g. over the render mesh's vertices, which bound every point
-// on it) and the largest area stretch of any triangle (e.g. from the relevance radii).
-struct RefinementBound {
-    float min_w = 0.0f;
-    float max_stretch = 1.0f;
-};
-
-// True when some triangle may need extra points under these bounds.
-bool refinement_needed(const RefinementMesh& r, const SizeParams& params, const RefinementBound& bound);
-
 void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positions,
                    const float* normals, const uint8_t* double_sided, const SizeParams& params,
-                   bool stretch, RefinedPoints* out, RefinementStats* stats,
-                   const RefinementBound* bound = nullptr);
+                   bool stretch, RefinedPoints* out, RefinementStats* stats);
 
 // Hand-over (mesh domain only), after size_stipples: scales each baked point's diameter by
 // its host triangle's fade from the last refine_points (1 where the bake alone draws).
