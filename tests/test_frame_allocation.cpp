@@ -2,6 +2,7 @@
 // operator new calls over many frames of sampling, skinning, point stages and drawing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <memory>
@@ -79,6 +80,24 @@ TEST(FrameAllocation, FramesAllocateNothingAfterLoad) {
     g_counting = false;
     EXPECT_EQ(g_allocations.load(), 0);
     EXPECT_GT(pipeline->points_drawn, 100u);  // the frames did real work
+
+    // Close-ups, dark tones and zooming: the run-time refinement generates extra points into
+    // memory taken at load, and changing the view takes none either.
+    g_allocations = 0;
+    g_counting = true;
+    uint32_t most_refined = 0;
+    for (int f = 0; f < 60; ++f) {
+        stipple::PipelineConfig view = pipeline->config;
+        view.zoom = 1.0f + 15.0f * float(f) / 59.0f;
+        view.constant_tone = 0.6f;
+        stipple::pipeline_set_view(pipeline.get(), view);
+        stipple::pipeline_frame(pipeline.get(), 0, float(f) / 30.0f, &times);
+        stipple::renderer_read_color(&pipeline->renderer, rgba.data());
+        most_refined = std::max(most_refined, pipeline->refined_count);
+    }
+    g_counting = false;
+    EXPECT_EQ(g_allocations.load(), 0);
+    EXPECT_GT(most_refined, 10000u);  // the refinement did real work
 
     stipple::pipeline_destroy(pipeline.get());
     stipple::platform::destroy_headless_context(&context);
