@@ -44,14 +44,7 @@ Fixture* fixture(uint32_t points) {
     f->bind_normals.resize(n * 3);
     stipple::place_points(f->asset.points, m.indices, m.positions, m.normals, f->bind.data(),
                           f->bind_normals.data());
-    double area = 0.0;
-    for (uint32_t t = 0; t < m.triangle_count; ++t) {
-        const uint32_t* tri = m.indices + size_t(t) * 3;
-        const glm::vec3 a(m.positions[tri[0] * 3], m.positions[tri[0] * 3 + 1], m.positions[tri[0] * 3 + 2]);
-        const glm::vec3 b(m.positions[tri[1] * 3], m.positions[tri[1] * 3 + 1], m.positions[tri[1] * 3 + 2]);
-        const glm::vec3 c(m.positions[tri[2] * 3], m.positions[tri[2] * 3 + 1], m.positions[tri[2] * 3 + 2]);
-        area += 0.5 * double(glm::length(glm::cross(b - a, c - a)));
-    }
+    const double area = stipple::surface_area(m);
     if (!stipple::triangulate_points(uint32_t(n), f->bind.data(), f->bind_normals.data(), area, &f->triangles))
         return nullptr;
     f->domain.vertex_count = uint32_t(n);
@@ -148,7 +141,8 @@ void BM_TriangulateAtLoad(benchmark::State& state) {
     const uint32_t n = f->asset.points.point_count;
     for (auto _ : state) {
         stipple::PointTriangulation t;
-        stipple::triangulate_points(n, f->bind.data(), f->bind_normals.data(), 1.5356, &t);
+        stipple::triangulate_points(n, f->bind.data(), f->bind_normals.data(),
+                                    stipple::surface_area(f->asset.mesh), &t);
         benchmark::DoNotOptimize(t.triangle_count);
     }
     state.counters["per_point"] = benchmark::Counter(

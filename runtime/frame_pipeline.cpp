@@ -208,16 +208,7 @@ bool refinement_setup(Pipeline* p, char* error, size_t error_size) {
     p->refinement_domain = asset.mesh;
     p->refine_on_points = false;
     if (n >= kMinTriangulatedPoints) {
-        double area = 0.0;
-        const MeshView& m = asset.mesh;
-        for (uint32_t t = 0; t < m.triangle_count; ++t) {
-            const uint32_t* tri = m.indices + size_t(t) * 3;
-            const glm::vec3 a(m.positions[tri[0] * 3], m.positions[tri[0] * 3 + 1], m.positions[tri[0] * 3 + 2]);
-            const glm::vec3 b(m.positions[tri[1] * 3], m.positions[tri[1] * 3 + 1], m.positions[tri[1] * 3 + 2]);
-            const glm::vec3 c(m.positions[tri[2] * 3], m.positions[tri[2] * 3 + 1], m.positions[tri[2] * 3 + 2]);
-            const float twice = glm::length(glm::cross(b - a, c - a));
-            if (std::isfinite(twice)) area += 0.5 * double(twice);
-        }
+        const double area = surface_area(asset.mesh);
         if (!triangulate_points(n, p->point_positions.get(), p->point_normals.get(), area,
                                 &p->point_triangles)) {
             std::snprintf(error, error_size, "out of memory triangulating %u points", n);

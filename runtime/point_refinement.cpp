@@ -270,8 +270,6 @@ void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positio
     const float dot_area = 0.785398163f * params.max_point_size * params.max_point_size;
     const float focal2_over_dot = focal * focal / dot_area;
     const float near_w = near_plane_w(params);
-    // Largest area stretch of any triangle, for the quick per-triangle test.
-    const float stretch_bound = !stretch ? 1.0f : 1e30f;
     for (uint32_t i = 0; i < mesh.vertex_count; ++i) {
         const glm::vec3 p(positions[i * 3], positions[i * 3 + 1], positions[i * 3 + 2]);
         const glm::vec3 n(normals[i * 3], normals[i * 3 + 1], normals[i * 3 + 2]);
@@ -285,8 +283,6 @@ void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positio
         const float lit = glm::dot(n, params.light_direction);
         r->vertex[i].need = n_dot_v > 0.0f ? n_dot_v * ink.at(lit) : 0.0f;
         r->vertex[i].need_back = n_dot_v < 0.0f ? -n_dot_v * ink.at(-lit) : 0.0f;
-        const float w = std::max(c.w, near_w);
-        r->vertex[i].density = r->vertex[i].need * focal2_over_dot / (w * w);
     }
     Traversal s;
     s.r = r;
@@ -326,11 +322,6 @@ void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positio
             const float first = r->phase[t] / (area * s.scale);
             const float lower = r->hand_over ? std::min(baked + first, kHandOverStart * r->finest_density)
                                              : baked + first;
-            // Quickest out: the corners' own densities (with a margin for a larger one inside
-            // the triangle) times the frame's largest stretch.
-            if (!two_sided &&
-                1.25f * std::max({a.density, b.density, c.density}) * stretch_bound < lower)
-                continue;
             float need = std::max({a.need, b.need, c.need});
             if (two_sided) need = std::max({need, a.need_back, b.need_back, c.need_back});
             if (!(need > 0.0f)) continue;

@@ -47,7 +47,6 @@ struct RefinementVertex {
     float need;      // max(N.V, 0) * ink: the density the size rule asks for, without 1/w^2
     float need_back; // the same for the flipped normal (double-sided triangles seen from behind)
     uint32_t outside;  // frustum outcode: bit set per clip plane the vertex lies beyond
-    float density;     // need * focal^2 / (dot area * w^2): the density wanted right here
 };
 
 // Per-triangle data computed once at load from the bind pose, and per-vertex scratch.

@@ -51,6 +51,19 @@ struct Candidate {
 
 }  // namespace
 
+double surface_area(const MeshView& m) {
+    double area = 0.0;
+    for (uint32_t t = 0; t < m.triangle_count; ++t) {
+        const uint32_t* tri = m.indices + size_t(t) * 3;
+        const glm::vec3 a(m.positions[tri[0] * 3], m.positions[tri[0] * 3 + 1], m.positions[tri[0] * 3 + 2]);
+        const glm::vec3 b(m.positions[tri[1] * 3], m.positions[tri[1] * 3 + 1], m.positions[tri[1] * 3 + 2]);
+        const glm::vec3 c(m.positions[tri[2] * 3], m.positions[tri[2] * 3 + 1], m.positions[tri[2] * 3 + 2]);
+        const float twice = glm::length(glm::cross(b - a, c - a));
+        if (std::isfinite(twice)) area += 0.5 * double(twice);
+    }
+    return area;
+}
+
 bool triangulate_points(uint32_t count, const float* positions, const float* normals,
                         double area, PointTriangulation* out) {
     *out = PointTriangulation();

@@ -19,7 +19,12 @@
 #include <cstdint>
 #include <memory>
 
+#include "runtime/asset.h"
+
 namespace stipple {
+
+// Total area of a mesh's triangles (degenerate or non-finite ones count 0).
+double surface_area(const MeshView& mesh);
 
 struct PointTriangulation {
     uint32_t triangle_count = 0;
