@@ -45,7 +45,8 @@ Fixture* fixture(uint32_t points) {
     stipple::place_points(f->asset.points, m.indices, m.positions, m.normals, f->bind.data(),
                           f->bind_normals.data());
     const double area = stipple::surface_area(m);
-    if (!stipple::triangulate_points(uint32_t(n), f->bind.data(), f->bind_normals.data(), area, &f->triangles))
+    if (!stipple::triangulate_points(uint32_t(n), f->bind.data(), f->bind_normals.data(), area, &m,
+                                     f->asset.points.host_triangle, &f->triangles))
         return nullptr;
     f->domain.vertex_count = uint32_t(n);
     f->domain.triangle_count = f->triangles.triangle_count;
@@ -142,7 +143,8 @@ void BM_TriangulateAtLoad(benchmark::State& state) {
     for (auto _ : state) {
         stipple::PointTriangulation t;
         stipple::triangulate_points(n, f->bind.data(), f->bind_normals.data(),
-                                    stipple::surface_area(f->asset.mesh), &t);
+                                    stipple::surface_area(f->asset.mesh), &f->asset.mesh,
+                                    f->asset.points.host_triangle, &t);
         benchmark::DoNotOptimize(t.triangle_count);
     }
     state.counters["per_point"] = benchmark::Counter(

@@ -210,7 +210,7 @@ bool refinement_setup(Pipeline* p, char* error, size_t error_size) {
     if (n >= kMinTriangulatedPoints) {
         const double area = surface_area(asset.mesh);
         if (!triangulate_points(n, p->point_positions.get(), p->point_normals.get(), area,
-                                &p->point_triangles)) {
+                                &asset.mesh, asset.points.host_triangle, &p->point_triangles)) {
             std::snprintf(error, error_size, "out of memory triangulating %u points", n);
             return false;
         }

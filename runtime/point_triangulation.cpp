@@ -49,6 +49,86 @@ struct Candidate {
     glm::vec2 q;  // in the tangent plane
 };
 
+// Which triangles of the surface lie within reach of a point *along the surface*: the
+// triangles connected to the point's host triangle through shared (welded) vertices whose
+// bounding spheres meet the ball of radius `reach`. Two points may only be joined if one's host
+// triangle is among the other's: parts that merely pass close (an arm by the torso, fingers)
+// are never bridged, so no triangle spans the air between parts that move apart.
+struct SurfaceReach {
+    const MeshView* mesh = nullptr;
+    std::unique_ptr<uint32_t[]> weld;         // vertex -> canonical vertex (same position)
+    std::unique_ptr<uint32_t[]> start, tris;  // canonical vertex -> its triangles (CSR)
+    std::unique_ptr<uint32_t[]> stamp;        // per triangle: last point that reached it
+    std::unique_ptr<uint32_t[]> queue;        // per triangle
+    std::unique_ptr<float[]> sphere;          // per triangle: centroid xyz, radius
+
+    glm::vec3 vertex(uint32_t v) const {
+        return glm::vec3(mesh->positions[v * 3], mesh->positions[v * 3 + 1], mesh->positions[v * 3 + 2]);
+    }
+
+    bool build(const MeshView& m) {
+        mesh = &m;
+        const uint32_t nv = m.vertex_count, nt = m.triangle_count;
+        std::unique_ptr<uint32_t[]> order(new (std::nothrow) uint32_t[nv + 1]);
+        weld.reset(new (std::nothrow) uint32_t[nv + 1]);
+        start.reset(new (std::nothrow) uint32_t[nv + 2]);
+        tris.reset(new (std::nothrow) uint32_t[size_t(nt) * 3 + 1]);
+        stamp.reset(new (std::nothrow) uint32_t[nt + 1]);
+        queue.reset(new (std::nothrow) uint32_t[nt + 1]);
+        sphere.reset(new (std::nothrow) float[size_t(nt) * 4 + 4]);
+        if (!order || !weld || !start || !tris || !stamp || !queue || !sphere) return false;
+        for (uint32_t v = 0; v < nv; ++v) order[v] = v;
+        auto less = [&](uint32_t a, uint32_t b) {
+            const float* pa = m.positions + size_t(a) * 3;
+            const float* pb = m.positions + size_t(b) * 3;
+            return std::lexicographical_compare(pa, pa + 3, pb, pb + 3);
+        };
+        std::sort(order.get(), order.get() + nv, less);
+        for (uint32_t k = 0; k < nv; ++k)
+            weld[order[k]] = k > 0 && !less(order[k - 1], order[k]) ? weld[order[k - 1]] : order[k];
+        std::fill(start.get(), start.get() + nv + 2, 0u);
+        for (uint32_t t = 0; t < nt; ++t)
+            for (int c = 0; c < 3; ++c) ++start[weld[m.indices[size_t(t) * 3 + c]] + 1];
+        for (uint32_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+        std::unique_ptr<uint32_t[]> fill(new (std::nothrow) uint32_t[nv + 1]);
+        if (!fill) return false;
+        std::copy(start.get(), start.get() + nv, fill.get());
+        for (uint32_t t = 0; t < nt; ++t) {
+            stamp[t] = ~0u;
+            const uint32_t* tri = m.indices + size_t(t) * 3;
+            for (int c = 0; c < 3; ++c) tris[fill[weld[tri[c]]]++] = t;
+            const glm::vec3 a = vertex(tri[0]), b = vertex(tri[1]), cc = vertex(tri[2]);
+            const glm::vec3 centre = (a + b + cc) / 3.0f;
+            float* sp = sphere.get() + size_t(t) * 4;
+            sp[0] = centre.x, sp[1] = centre.y, sp[2] = centre.z;
+            sp[3] = std::sqrt(std::max({glm::dot(a - centre, a - centre), glm::dot(b - centre, b - centre),
+                                        glm::dot(cc - centre, cc - centre)}));
+        }
+        return true;
+    }
+
+    // Marks (stamp = id) the triangles reachable from `host` within `reach` of p.
+    void mark(uint32_t id, uint32_t host, const glm::vec3& p, float reach) {
+        uint32_t head = 0, tail = 0;
+        stamp[host] = id;
+        queue[tail++] = host;
+        while (head < tail) {
+            const uint32_t* tri = mesh->indices + size_t(queue[head++]) * 3;
+            for (int c = 0; c < 3; ++c) {
+                const uint32_t v = weld[tri[c]];
+                for (uint32_t k = start[v]; k < start[v + 1]; ++k) {
+                    const uint32_t u = tris[k];
+                    if (stamp[u] == id) continue;
+                    const float* sp = sphere.get() + size_t(u) * 4;
+                    if (glm::length(glm::vec3(sp[0], sp[1], sp[2]) - p) > reach + sp[3]) continue;
+                    stamp[u] = id;
+                    queue[tail++] = u;
+                }
+            }
+        }
+    }
+};
+
 }  // namespace
 
 double surface_area(const MeshView& m) {
@@ -65,9 +145,12 @@ double surface_area(const MeshView& m) {
 }
 
 bool triangulate_points(uint32_t count, const float* positions, const float* normals,
-                        double area, PointTriangulation* out) {
+                        double area, const MeshView* surface, const uint32_t* host_triangle,
+                        PointTriangulation* out) {
     *out = PointTriangulation();
     if (count < 3 || !(area > 0.0)) return true;
+    SurfaceReach along;
+    if (surface && host_triangle && !along.build(*surface)) return false;
     const float spacing = float(std::sqrt(area / double(count)));
     const float reach = 2.2f * spacing;
     SpatialGrid grid;
@@ -83,10 +166,12 @@ bool triangulate_points(uint32_t count, const float* positions, const float* nor
         // Tangent frame (e1, e2, n), right-handed: counter-clockwise about n.
         const glm::vec3 axis = std::fabs(n.x) < 0.7f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
         const glm::vec3 e1 = glm::normalize(glm::cross(axis, n)), e2 = glm::cross(n, e1);
-        // The nearest same-sheet neighbours within reach.
+        // The nearest same-sheet neighbours within reach, along the surface.
+        if (along.mesh) along.mark(i, host_triangle[i], p, reach);
         int found = 0;
         grid.near(p, reach, [&](uint32_t j) {
             if (j == i) return;
+            if (along.mesh && along.stamp[host_triangle[j]] != i) return;  // another part
             const glm::vec3 d = grid.point(j) - p;
             const float d2 = glm::dot(d, d);
             if (!(d2 > 0.0f) || d2 > reach * reach) return;

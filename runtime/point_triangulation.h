@@ -10,11 +10,14 @@
 // host triangles every frame; a point inside lies on the plane of its three corners (the
 // chord, at most spacing^2 / (8 * curvature radius) off the surface).
 //
-// Construction: for each point, its neighbours within 2.5 spacings that lie on the same sheet
-// (normals agree, offset mostly in the tangent plane) are projected onto its tangent plane;
+// Construction: for each point, its neighbours within 2.2 spacings that lie on the same sheet
+// (normals agree, offset mostly in the tangent plane) and are reachable along the surface
+// (through connected triangles of the mesh, so an arm is never joined to the torso beside it)
+// are projected onto its tangent plane;
 // the point's Voronoi cell among them (half-plane clipping) gives its Delaunay neighbours in
 // angular order, and consecutive pairs make triangles. Each triangle is kept once, from its
-// lowest-indexed corner. Openings wider than 150 degrees are surface boundaries: no triangle.
+// lowest-indexed corner. Where the cell reaches the search box (an open boundary) no triangle
+// is made.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -32,8 +35,11 @@ struct PointTriangulation {
 };
 
 // `positions`/`normals`: count points, 3 floats each (bind pose, unit normals); `area`: the
-// surface area they cover. False only when memory runs out.
+// surface area they cover. With `surface` (the bind-pose mesh) and each point's host triangle
+// on it, points are joined only if they are within reach along the surface, not merely in
+// space. False only when memory runs out.
 bool triangulate_points(uint32_t count, const float* positions, const float* normals,
-                        double area, PointTriangulation* out);
+                        double area, const MeshView* surface, const uint32_t* host_triangle,
+                        PointTriangulation* out);
 
 }  // namespace stipple

@@ -34,7 +34,7 @@ TEST(PointTriangulation, ClosedSurfaceGetsAboutTwoTrianglesPerPoint) {
     std::vector<float> p, nrm;
     sphere(n, &p, &nrm);
     PointTriangulation t;
-    ASSERT_TRUE(stipple::triangulate_points(n, p.data(), nrm.data(), 4.0 * 3.14159265, &t));
+    ASSERT_TRUE(stipple::triangulate_points(n, p.data(), nrm.data(), 4.0 * 3.14159265, nullptr, nullptr, &t));
     // Euler: a closed triangulation of n points has 2n - 4 triangles; allow a few misses.
     std::printf("sphere: %u points, %u triangles\n", n, t.triangle_count);
     EXPECT_GT(t.triangle_count, uint32_t(0.97 * (2 * n - 4)));
@@ -74,7 +74,7 @@ TEST(PointTriangulation, OpenSheetStopsAtItsBoundaryAndThinSheetsStayApart) {
             }
     const uint32_t n = uint32_t(p.size() / 3);
     PointTriangulation t;
-    ASSERT_TRUE(stipple::triangulate_points(n, p.data(), nrm.data(), 2.0, &t));
+    ASSERT_TRUE(stipple::triangulate_points(n, p.data(), nrm.data(), 2.0, nullptr, nullptr, &t));
     std::printf("two sheets: %u points, %u triangles\n", n, t.triangle_count);
     const uint32_t per_sheet = side * side;
     // A planar triangulation of m points with b on the hull has 2m - 2 - b triangles.
@@ -87,7 +87,7 @@ TEST(PointTriangulation, OpenSheetStopsAtItsBoundaryAndThinSheetsStayApart) {
         ASSERT_LT(glm::length(at(p, tri[1]) - at(p, tri[0])), 3.5f / side);
     }
     PointTriangulation none;
-    ASSERT_TRUE(stipple::triangulate_points(2, p.data(), nrm.data(), 1.0, &none));
+    ASSERT_TRUE(stipple::triangulate_points(2, p.data(), nrm.data(), 1.0, nullptr, nullptr, &none));
     EXPECT_EQ(none.triangle_count, 0u);
 }
 
