@@ -12,8 +12,8 @@
 // A frame:  SamplingJob (or several + BlendingJob) -> LocalToModelJob -> JointMatrixJob
 //           [-> dqs_joints()] -> MorphJob (if the mesh has morph targets) -> SkinningJob.
 //
-// The plain functions at the end (sample_clip, rest_pose, local_to_model, joint_matrices,
-// skin_lbs(SkinJob)) are the original unchecked API; they are kept and run the same code.
+// The plain functions at the end (rest_pose, local_to_model, joint_matrices) are what is left
+// of the original unchecked API: the bake still calls them.
 //
 // Data validity: jobs check buffer *sizes*. Clip and skeleton *contents* are checked once at
 // load with check_clip() / check_skeleton(); sampling is nevertheless memory-safe on any
@@ -146,10 +146,10 @@ const char* data_error_name(DataError error);
 // Checks a clip against the skeleton's node count and the number of morph slots; on error
 // *bad_channel (if not null) is the first offending channel. `values` sizes are taken from
 // channel_value_count(): the loader must have checked that those floats exist.
-DataError check_clip(const Clip& clip, uint32_t node_count, uint32_t morph_weight_count,
+[[nodiscard]] DataError check_clip(const Clip& clip, uint32_t node_count, uint32_t morph_weight_count,
                      uint32_t* bad_channel);
-DataError check_skeleton(const Skeleton& skeleton);
-DataError check_morph(const Morph& morph, uint32_t vertex_count);
+[[nodiscard]] DataError check_skeleton(const Skeleton& skeleton);
+[[nodiscard]] DataError check_morph(const Morph& morph, uint32_t vertex_count);
 
 // ---------------------------------------------------------------------------------------
 // Sampling
@@ -181,8 +181,8 @@ struct SamplingJob {
     Span<Trs> locals;                     // >= skeleton->node_count
     Span<float> morph_weights;            // optional output, one per morph slot
     Span<const float> default_morph_weights;  // empty (zeros) or >= morph_weights.size
-    bool validate() const;
-    bool run() const;
+    [[nodiscard]] bool validate() const;
+    [[nodiscard]] bool run() const;
 };
 
 // ---------------------------------------------------------------------------------------
@@ -209,13 +209,13 @@ struct BlendingJob {
     Span<Trs> out;                       // >= node_count
     Span<float> out_morph_weights;       // optional
     Span<const float> default_morph_weights;  // empty (zeros) or >= out_morph_weights.size
-    bool validate() const;
-    bool run() const;
+    [[nodiscard]] bool validate() const;
+    [[nodiscard]] bool run() const;
 };
 
 // Crossfade from `from` to `to` (alpha 0 -> 1): a two-layer BlendingJob.
-bool crossfade(const Skeleton& skeleton, Span<const Trs> from, Span<const Trs> to, float alpha,
-               Span<Trs> out);
+[[nodiscard]] bool crossfade(const Skeleton& skeleton, Span<const Trs> from, Span<const Trs> to,
+                             float alpha, Span<Trs> out);
 
 // ---------------------------------------------------------------------------------------
 // Hierarchy
@@ -225,8 +225,8 @@ struct LocalToModelJob {
     const Skeleton* skeleton = nullptr;
     Span<const Trs> locals;   // >= node_count
     Span<glm::mat4> models;   // >= node_count
-    bool validate() const;
-    bool run() const;
+    [[nodiscard]] bool validate() const;
+    [[nodiscard]] bool run() const;
 };
 
 // skin[j] = model[joint_nodes[j]] * inverse_bind[j]  (glTF 2.0 §3.7.3 joint matrix).
@@ -234,8 +234,8 @@ struct JointMatrixJob {
     const Skeleton* skeleton = nullptr;
     Span<const glm::mat4> models;   // >= node_count
     Span<glm::mat4> joint_matrices; // >= joint_count
-    bool validate() const;
-    bool run() const;
+    [[nodiscard]] bool validate() const;
+    [[nodiscard]] bool run() const;
 };
 
 // ---------------------------------------------------------------------------------------
@@ -250,8 +250,8 @@ struct MorphJob {
     Span<const float> in_normals;      // empty, or >= 3 * vertex_count
     Span<float> out_positions;         // >= 3 * vertex_count
     Span<float> out_normals;           // empty iff in_normals is; else >= 3 * vertex_count
-    bool validate() const;             // also checks every target's range fits vertex_count
-    bool run() const;
+    [[nodiscard]] bool validate() const;             // also checks every target's range fits vertex_count
+    [[nodiscard]] bool run() const;
 };
 
 // ---------------------------------------------------------------------------------------
@@ -272,7 +272,8 @@ struct DqsJoint {
 // Converts joint matrices to DQS joints. Returns false on size mismatch (out.size <
 // joint_matrices.size); *stretched (optional) = number of joints whose S is not the
 // identity (within 1e-5): 0 means SkinningJob::dq_rigid may be set.
-bool dqs_joints(Span<const glm::mat4> joint_matrices, Span<DqsJoint> out, uint32_t* stretched);
+[[nodiscard]] bool dqs_joints(Span<const glm::mat4> joint_matrices, Span<DqsJoint> out,
+                              uint32_t* stretched);
 
 enum class Skinning : uint8_t { lbs = 0, dqs = 1 };
 
@@ -297,44 +298,25 @@ struct SkinningJob {
     Span<const float> in_normals;          // empty, or >= 3 * vertex_count
     Span<float> out_positions;             // >= 3 * vertex_count
     Span<float> out_normals;               // empty iff in_normals is; else >= 3 * vertex_count
-    bool validate() const;
-    bool run() const;
-    bool run_scalar() const;
+    [[nodiscard]] bool validate() const;
+    [[nodiscard]] bool run() const;
+    [[nodiscard]] bool run_scalar() const;
 };
 
 // "sse2", "neon" or "scalar": the path SkinningJob::run() and the hierarchy jobs use.
 const char* simd_path();
 
 // ---------------------------------------------------------------------------------------
-// Original unchecked API (sizes are trusted; kept for existing callers).
-
-// Writes the clip's pose at `time` into `locals` (node_count entries). Clamp wrap, no
-// context, morph weights ignored: SamplingJob with those settings.
-void sample_clip(const Skeleton& skeleton, const Clip& clip, float time, Trs* locals);
+// Unchecked helpers (sizes are trusted: node_count / joint_count entries), left from the
+// original API for bake/scene_bounds.cpp. New code uses the jobs above.
 
 // Copies the rest pose into `locals` (node_count entries).
 void rest_pose(const Skeleton& skeleton, Trs* locals);
 
-// model[i] = model[parent[i]] * local[i] (node_count entries).
+// model[i] = model[parent[i]] * local[i] (node_count entries): LocalToModelJob.
 void local_to_model(const Skeleton& skeleton, const Trs* locals, glm::mat4* model);
 
-// skin[j] = model[joint_nodes[j]] * inverse_bind[j] (joint_count entries).
+// skin[j] = model[joint_nodes[j]] * inverse_bind[j] (joint_count entries): JointMatrixJob.
 void joint_matrices(const Skeleton& skeleton, const glm::mat4* model, glm::mat4* skin);
-
-// Linear blend skinning of positions and normals, 4 influences per vertex.
-// in/out positions and normals are 3 floats per vertex; joints/weights 4 per vertex.
-// joint_count == 0 copies the input (bind pose). Runs SkinningJob (SIMD path).
-struct SkinJob {
-    uint32_t vertex_count;
-    const glm::mat4* skin;     // joint matrices
-    uint32_t joint_count;      // entries in skin; joint indices >= this are treated as 0
-    const uint16_t* joints;    // vertex_count * 4
-    const float* weights;      // vertex_count * 4
-    const float* in_positions; // vertex_count * 3
-    const float* in_normals;   // vertex_count * 3
-    float* out_positions;      // vertex_count * 3
-    float* out_normals;        // vertex_count * 3
-};
-void skin_lbs(const SkinJob& job);
 
 }  // namespace stipple::anim

@@ -61,7 +61,7 @@ void normalise_quat(float* q) {
 // nearly equal keys. After normalisation the result's angle differs from exact slerp by at
 // most 7.3e-6 rad for keys 180 degrees apart (the worst case on the shortest arc; measured
 // in float 1.5e-5), 2.5e-7 rad for keys up to 120 degrees apart and < 1e-8 rad below 90:
-// float rounding dominates for real clips (tests/test_anim_jobs.cpp checks it against
+// float rounding dominates for real clips (tests/anim/test_sampling_job.cpp checks it against
 // double-precision slerp).
 void slerp_shortest(const float* a, const float* b, float t, float* out) {
     // Series terms u_i = 1 / (i (2i + 1)), v_i = i / (2i + 1), i = 1..8. kU/kV carry Eberly's
@@ -268,15 +268,6 @@ bool SamplingJob::run() const {
 void rest_pose(const Skeleton& skeleton, Trs* locals) {
     if (skeleton.node_count == 0) return;
     std::memcpy(locals, skeleton.rest, skeleton.node_count * sizeof(Trs));
-}
-
-void sample_clip(const Skeleton& skeleton, const Clip& clip, float time, Trs* locals) {
-    SamplingJob job;
-    job.skeleton = &skeleton;
-    job.clip = &clip;
-    job.time = time;
-    job.locals = Span<Trs>(locals, skeleton.node_count);
-    job.run();
 }
 
 }  // namespace stipple::anim

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "anim/anim.h"
+#include "anim/finite.h"
 #include "anim/simd.h"
 
 namespace stipple::anim {
@@ -70,13 +71,6 @@ void mul4(const float* a, const float* b, float* out) {
                        simd::madd(a2, simd::splat(bc[2]), simd::mul(a3, simd::splat(bc[3])))));
         simd::store(out + 4 * c, col);
     }
-}
-
-bool finite(const float* v, size_t n) {
-    for (size_t i = 0; i < n; ++i) {
-        if (!std::isfinite(v[i])) return false;
-    }
-    return true;
 }
 
 }  // namespace
@@ -197,10 +191,10 @@ DataError check_skeleton(const Skeleton& skeleton) {
         if (skeleton.joint_nodes[j] >= skeleton.node_count) return DataError::joint_out_of_range;
     }
     if (skeleton.node_count > 0 &&
-        !finite(&skeleton.rest[0].translation[0], size_t{skeleton.node_count} * 10))
+        !all_finite(&skeleton.rest[0].translation[0], size_t{skeleton.node_count} * 10))
         return DataError::non_finite_value;
     if (skeleton.joint_count > 0 &&
-        !finite(skeleton.inverse_bind, size_t{skeleton.joint_count} * 16))
+        !all_finite(skeleton.inverse_bind, size_t{skeleton.joint_count} * 16))
         return DataError::non_finite_value;
     return DataError::ok;
 }
@@ -210,7 +204,8 @@ void local_to_model(const Skeleton& skeleton, const Trs* locals, glm::mat4* mode
     job.skeleton = &skeleton;
     job.locals = Span<const Trs>(locals, skeleton.node_count);
     job.models = Span<glm::mat4>(model, skeleton.node_count);
-    job.run();
+    // Spans are built from the skeleton's own counts, so the job's size check always passes.
+    (void)job.run();
 }
 
 void joint_matrices(const Skeleton& skeleton, const glm::mat4* model, glm::mat4* skin) {
@@ -218,7 +213,8 @@ void joint_matrices(const Skeleton& skeleton, const glm::mat4* model, glm::mat4*
     job.skeleton = &skeleton;
     job.models = Span<const glm::mat4>(model, skeleton.node_count);
     job.joint_matrices = Span<glm::mat4>(skin, skeleton.joint_count);
-    job.run();
+    // Spans are built from the skeleton's own counts, so the job's size check always passes.
+    (void)job.run();
 }
 
 const char* simd_path() { return simd::kPath; }

@@ -237,63 +237,82 @@ void lbs_block(const Mesh& m, size_t v) {
     }
 }
 
-// DQS of 4 vertices, one per lane.
-template <int N, bool kNormals, bool kStretch>
-void dqs_block(const Mesh& m, size_t v) {
+// DQS of 4 vertices, one per lane, in steps: the block's inputs to lanes, the stretch phase
+// (two-phase skinning), the dual-quaternion blend, then rotation + translation and the stores.
+
+// The steps are always inlined: called once per block, they must compile to the same code
+// as one function (a call would spill the lanes to memory).
+#define STIPPLE_STEP inline __attribute__((always_inline))
+
+// x, y, z of the 4 vertices of a block, one vertex per lane.
+struct Lanes3 {
+    f4 x, y, z;
+};
+
+// A blended dual quaternion per lane: real part q, dual part d.
+struct DualQuat4 {
+    f4 qx, qy, qz, qw, dx, dy, dz, dw;
+};
+
+// Loads 4 packed xyz triples (12 floats) into lanes.
+STIPPLE_STEP Lanes3 load_lanes3(const float* p) {
+    Lanes3 v;
+    simd::aos3_to_soa(simd::load(p), simd::load(p + 4), simd::load(p + 8), v.x, v.y, v.z);
+    return v;
+}
+
+// Stores lanes as 4 packed xyz triples.
+STIPPLE_STEP void store_lanes3(float* out, f4 x, f4 y, f4 z) {
+    f4 a, b, c;
+    simd::soa_to_aos3(x, y, z, a, b, c);
+    simd::store(out, a);
+    simd::store(out + 4, b);
+    simd::store(out + 8, c);
+}
+
+STIPPLE_STEP f4 inverse_length(f4 len2) {
+    return simd::div(simd::splat(1.0f), simd::sqrt(simd::max(len2, simd::splat(1e-30f))));
+}
+
+// Phase 1: applies sum_k w_k S_k to each vertex's position and normal (AoS columns, as in
+// LBS), then back to lanes.
+template <int N>
+STIPPLE_STEP void apply_stretch(const Mesh& m, size_t v, Lanes3* p, Lanes3* n) {
     const uint16_t* jv = m.joints + 4 * v;
-    f4 w[4] = {simd::load(m.weights + 4 * v), simd::load(m.weights + 4 * v + 4),
-               simd::load(m.weights + 4 * v + 8), simd::load(m.weights + 4 * v + 12)};
-    simd::transpose(w[0], w[1], w[2], w[3]);  // w[k]: influence k of the 4 vertices
-
-    const float* p = m.in_p + 3 * v;
-    f4 px, py, pz;
-    f4 nx = simd::zero(), ny = simd::zero(), nz = simd::zero();
-    simd::aos3_to_soa(simd::load(p), simd::load(p + 4), simd::load(p + 8), px, py, pz);
-    if (kNormals) {
-        const float* n = m.in_n + 3 * v;
-        simd::aos3_to_soa(simd::load(n), simd::load(n + 4), simd::load(n + 8), nx, ny, nz);
-    }
-    if (kStretch) {
-        // Phase 1: apply sum_k w_k S_k per vertex (AoS columns, as in LBS), then back to
-        // lanes.
-        f4 sp[4], sn[4];
-        float pv[12], nv[12];
-        f4 a, b, c;
-        simd::soa_to_aos3(px, py, pz, a, b, c);
-        simd::store(pv, a);
-        simd::store(pv + 4, b);
-        simd::store(pv + 8, c);
-        simd::soa_to_aos3(nx, ny, nz, a, b, c);
-        simd::store(nv, a);
-        simd::store(nv + 4, b);
-        simd::store(nv + 8, c);
-        for (int i = 0; i < 4; ++i) {
-            const float* wi = m.weights + 4 * (v + i);
-            f4 s0 = simd::zero(), s1 = simd::zero(), s2 = simd::zero();
-            for (int k = 0; k < N; ++k) {
-                const float* s = m.dq[joint_index(jv[4 * i + k], m.joint_count)].stretch;
-                const f4 wk = simd::splat(wi[k]);
-                s0 = simd::madd(simd::load(s), wk, s0);
-                s1 = simd::madd(simd::load(s + 4), wk, s1);
-                s2 = simd::madd(simd::load(s + 8), wk, s2);
-            }
-            sp[i] = simd::madd(s0, simd::splat(pv[3 * i]),
-                               simd::madd(s1, simd::splat(pv[3 * i + 1]),
-                                          simd::mul(s2, simd::splat(pv[3 * i + 2]))));
-            sn[i] = simd::madd(s0, simd::splat(nv[3 * i]),
-                               simd::madd(s1, simd::splat(nv[3 * i + 1]),
-                                          simd::mul(s2, simd::splat(nv[3 * i + 2]))));
+    f4 sp[4], sn[4];
+    float pv[12], nv[12];
+    store_lanes3(pv, p->x, p->y, p->z);
+    store_lanes3(nv, n->x, n->y, n->z);
+    for (int i = 0; i < 4; ++i) {
+        const float* wi = m.weights + 4 * (v + i);
+        f4 s0 = simd::zero(), s1 = simd::zero(), s2 = simd::zero();
+        for (int k = 0; k < N; ++k) {
+            const float* s = m.dq[joint_index(jv[4 * i + k], m.joint_count)].stretch;
+            const f4 wk = simd::splat(wi[k]);
+            s0 = simd::madd(simd::load(s), wk, s0);
+            s1 = simd::madd(simd::load(s + 4), wk, s1);
+            s2 = simd::madd(simd::load(s + 8), wk, s2);
         }
-        f4 junk;
-        px = sp[0], py = sp[1], pz = sp[2], junk = sp[3];
-        simd::transpose(px, py, pz, junk);
-        nx = sn[0], ny = sn[1], nz = sn[2], junk = sn[3];
-        simd::transpose(nx, ny, nz, junk);
+        sp[i] = simd::madd(
+            s0, simd::splat(pv[3 * i]),
+            simd::madd(s1, simd::splat(pv[3 * i + 1]), simd::mul(s2, simd::splat(pv[3 * i + 2]))));
+        sn[i] = simd::madd(
+            s0, simd::splat(nv[3 * i]),
+            simd::madd(s1, simd::splat(nv[3 * i + 1]), simd::mul(s2, simd::splat(nv[3 * i + 2]))));
     }
+    f4 junk;
+    p->x = sp[0], p->y = sp[1], p->z = sp[2], junk = sp[3];
+    simd::transpose(p->x, p->y, p->z, junk);
+    n->x = sn[0], n->y = sn[1], n->z = sn[2], junk = sn[3];
+    simd::transpose(n->x, n->y, n->z, junk);
+}
 
-    // Phase 2: DLB over the lanes.
-    f4 qx = simd::zero(), qy = simd::zero(), qz = simd::zero(), qw = simd::zero();
-    f4 dx = simd::zero(), dy = simd::zero(), dz = simd::zero(), dw = simd::zero();
+// Phase 2: DLB over the lanes, normalised. w[k]: influence k's weight of the 4 vertices.
+template <int N>
+STIPPLE_STEP DualQuat4 blend_dual_quaternions(const Mesh& m, size_t v, const f4* w) {
+    const uint16_t* jv = m.joints + 4 * v;
+    DualQuat4 b = {simd::zero(), simd::zero(), simd::zero(), simd::zero(),
+                   simd::zero(), simd::zero(), simd::zero(), simd::zero()};
     f4 ux = simd::zero(), uy = simd::zero(), uz = simd::zero(), uw = simd::zero();  // pivot
     for (int k = 0; k < N; ++k) {
         const DqsJoint* j0 = m.dq + joint_index(jv[k], m.joint_count);
@@ -316,62 +335,75 @@ void dqs_block(const Mesh& m, size_t v) {
                 simd::madd(ux, rx, simd::madd(uy, ry, simd::madd(uz, rz, simd::mul(uw, rw))));
             wk = simd::flip_sign(wk, dot);
         }
-        qx = simd::madd(wk, rx, qx);
-        qy = simd::madd(wk, ry, qy);
-        qz = simd::madd(wk, rz, qz);
-        qw = simd::madd(wk, rw, qw);
-        dx = simd::madd(wk, ex, dx);
-        dy = simd::madd(wk, ey, dy);
-        dz = simd::madd(wk, ez, dz);
-        dw = simd::madd(wk, ew, dw);
+        b.qx = simd::madd(wk, rx, b.qx);
+        b.qy = simd::madd(wk, ry, b.qy);
+        b.qz = simd::madd(wk, rz, b.qz);
+        b.qw = simd::madd(wk, rw, b.qw);
+        b.dx = simd::madd(wk, ex, b.dx);
+        b.dy = simd::madd(wk, ey, b.dy);
+        b.dz = simd::madd(wk, ez, b.dz);
+        b.dw = simd::madd(wk, ew, b.dw);
     }
-    const f4 len2 = simd::madd(qx, qx, simd::madd(qy, qy, simd::madd(qz, qz, simd::mul(qw, qw))));
-    const f4 inv = simd::div(simd::splat(1.0f), simd::sqrt(simd::max(len2, simd::splat(1e-30f))));
-    qx = simd::mul(qx, inv), qy = simd::mul(qy, inv), qz = simd::mul(qz, inv),
-    qw = simd::mul(qw, inv);
-    dx = simd::mul(dx, inv), dy = simd::mul(dy, inv), dz = simd::mul(dz, inv),
-    dw = simd::mul(dw, inv);
+    const f4 inv = inverse_length(simd::madd(
+        b.qx, b.qx, simd::madd(b.qy, b.qy, simd::madd(b.qz, b.qz, simd::mul(b.qw, b.qw)))));
+    b.qx = simd::mul(b.qx, inv), b.qy = simd::mul(b.qy, inv), b.qz = simd::mul(b.qz, inv),
+    b.qw = simd::mul(b.qw, inv);
+    b.dx = simd::mul(b.dx, inv), b.dy = simd::mul(b.dy, inv), b.dz = simd::mul(b.dz, inv),
+    b.dw = simd::mul(b.dw, inv);
+    return b;
+}
 
+// The translation of a unit dual quaternion: 2 (qw dv - dw qv + qv x dv).
+STIPPLE_STEP Lanes3 dq_translation(const DualQuat4& b) {
     const f4 two = simd::splat(2.0f);
-    // Translation: 2 (qw dv - dw qv + qv x dv).
-    const f4 tx = simd::mul(
-        two, simd::sub(simd::madd(qw, dx, simd::sub(simd::mul(qy, dz), simd::mul(qz, dy))),
-                       simd::mul(dw, qx)));
-    const f4 ty = simd::mul(
-        two, simd::sub(simd::madd(qw, dy, simd::sub(simd::mul(qz, dx), simd::mul(qx, dz))),
-                       simd::mul(dw, qy)));
-    const f4 tz = simd::mul(
-        two, simd::sub(simd::madd(qw, dz, simd::sub(simd::mul(qx, dy), simd::mul(qy, dx))),
-                       simd::mul(dw, qz)));
-    // Rotation: v + 2 qv x (qv x v + qw v).
-    auto rotate4 = [&](f4 vx, f4 vy, f4 vz, f4& ox, f4& oy, f4& oz) {
-        const f4 cx = simd::madd(qw, vx, simd::sub(simd::mul(qy, vz), simd::mul(qz, vy)));
-        const f4 cy = simd::madd(qw, vy, simd::sub(simd::mul(qz, vx), simd::mul(qx, vz)));
-        const f4 cz = simd::madd(qw, vz, simd::sub(simd::mul(qx, vy), simd::mul(qy, vx)));
-        ox = simd::madd(two, simd::sub(simd::mul(qy, cz), simd::mul(qz, cy)), vx);
-        oy = simd::madd(two, simd::sub(simd::mul(qz, cx), simd::mul(qx, cz)), vy);
-        oz = simd::madd(two, simd::sub(simd::mul(qx, cy), simd::mul(qy, cx)), vz);
-    };
-    f4 ox, oy, oz;
-    rotate4(px, py, pz, ox, oy, oz);
-    f4 a, b, c;
-    simd::soa_to_aos3(simd::add(ox, tx), simd::add(oy, ty), simd::add(oz, tz), a, b, c);
-    float* op = m.out_p + 3 * v;
-    simd::store(op, a);
-    simd::store(op + 4, b);
-    simd::store(op + 8, c);
+    return {simd::mul(two,
+                      simd::sub(simd::madd(b.qw, b.dx,
+                                           simd::sub(simd::mul(b.qy, b.dz), simd::mul(b.qz, b.dy))),
+                                simd::mul(b.dw, b.qx))),
+            simd::mul(two,
+                      simd::sub(simd::madd(b.qw, b.dy,
+                                           simd::sub(simd::mul(b.qz, b.dx), simd::mul(b.qx, b.dz))),
+                                simd::mul(b.dw, b.qy))),
+            simd::mul(two,
+                      simd::sub(simd::madd(b.qw, b.dz,
+                                           simd::sub(simd::mul(b.qx, b.dy), simd::mul(b.qy, b.dx))),
+                                simd::mul(b.dw, b.qz)))};
+}
+
+// Rotation by the real part: v + 2 qv x (qv x v + qw v).
+STIPPLE_STEP Lanes3 dq_rotate(const DualQuat4& b, const Lanes3& v) {
+    const f4 two = simd::splat(2.0f);
+    const f4 cx = simd::madd(b.qw, v.x, simd::sub(simd::mul(b.qy, v.z), simd::mul(b.qz, v.y)));
+    const f4 cy = simd::madd(b.qw, v.y, simd::sub(simd::mul(b.qz, v.x), simd::mul(b.qx, v.z)));
+    const f4 cz = simd::madd(b.qw, v.z, simd::sub(simd::mul(b.qx, v.y), simd::mul(b.qy, v.x)));
+    return {simd::madd(two, simd::sub(simd::mul(b.qy, cz), simd::mul(b.qz, cy)), v.x),
+            simd::madd(two, simd::sub(simd::mul(b.qz, cx), simd::mul(b.qx, cz)), v.y),
+            simd::madd(two, simd::sub(simd::mul(b.qx, cy), simd::mul(b.qy, cx)), v.z)};
+}
+
+template <int N, bool kNormals, bool kStretch>
+void dqs_block(const Mesh& m, size_t v) {
+    f4 w[4] = {simd::load(m.weights + 4 * v), simd::load(m.weights + 4 * v + 4),
+               simd::load(m.weights + 4 * v + 8), simd::load(m.weights + 4 * v + 12)};
+    simd::transpose(w[0], w[1], w[2], w[3]);  // w[k]: influence k of the 4 vertices
+    Lanes3 p = load_lanes3(m.in_p + 3 * v);
+    Lanes3 n = {simd::zero(), simd::zero(), simd::zero()};
+    if (kNormals) n = load_lanes3(m.in_n + 3 * v);
+    if (kStretch) apply_stretch<N>(m, v, &p, &n);
+    const DualQuat4 b = blend_dual_quaternions<N>(m, v, w);
+    const Lanes3 t = dq_translation(b);
+    const Lanes3 o = dq_rotate(b, p);
+    store_lanes3(m.out_p + 3 * v, simd::add(o.x, t.x), simd::add(o.y, t.y), simd::add(o.z, t.z));
     if (kNormals) {
-        rotate4(nx, ny, nz, ox, oy, oz);
-        const f4 nl2 = simd::madd(ox, ox, simd::madd(oy, oy, simd::mul(oz, oz)));
-        const f4 ninv =
-            simd::div(simd::splat(1.0f), simd::sqrt(simd::max(nl2, simd::splat(1e-30f))));
-        simd::soa_to_aos3(simd::mul(ox, ninv), simd::mul(oy, ninv), simd::mul(oz, ninv), a, b, c);
-        float* on = m.out_n + 3 * v;
-        simd::store(on, a);
-        simd::store(on + 4, b);
-        simd::store(on + 8, c);
+        const Lanes3 r = dq_rotate(b, n);
+        const f4 inv =
+            inverse_length(simd::madd(r.x, r.x, simd::madd(r.y, r.y, simd::mul(r.z, r.z))));
+        store_lanes3(m.out_n + 3 * v, simd::mul(r.x, inv), simd::mul(r.y, inv),
+                     simd::mul(r.z, inv));
     }
 }
+
+#undef STIPPLE_STEP
 
 template <bool kNormals>
 void lbs_simd(const Mesh& m) {
@@ -497,30 +529,6 @@ bool SkinningJob::run() const {
         }
     }
     return true;
-}
-
-void skin_lbs(const SkinJob& job) {
-    const uint32_t n = job.vertex_count;
-    if (n == 0) return;
-    if (job.joint_count == 0) {
-        // No joint to fall back on: the mesh stays in its bind pose.
-        if (job.out_positions != job.in_positions)
-            std::memcpy(job.out_positions, job.in_positions, size_t{n} * 3 * sizeof(float));
-        if (job.out_normals != job.in_normals)
-            std::memcpy(job.out_normals, job.in_normals, size_t{n} * 3 * sizeof(float));
-        return;
-    }
-    SkinningJob s;
-    s.method = Skinning::lbs;
-    s.vertex_count = n;
-    s.joint_matrices = Span<const glm::mat4>(job.skin, job.joint_count);
-    s.joints = Span<const uint16_t>(job.joints, size_t{n} * 4);
-    s.weights = Span<const float>(job.weights, size_t{n} * 4);
-    s.in_positions = Span<const float>(job.in_positions, size_t{n} * 3);
-    s.in_normals = Span<const float>(job.in_normals, size_t{n} * 3);
-    s.out_positions = Span<float>(job.out_positions, size_t{n} * 3);
-    s.out_normals = Span<float>(job.out_normals, size_t{n} * 3);
-    s.run();
 }
 
 }  // namespace stipple::anim

@@ -5,19 +5,9 @@
 #include <cmath>
 
 #include "anim/anim.h"
+#include "anim/finite.h"
 
 namespace stipple::anim {
-namespace {
-
-bool finite(const float* v, size_t n) {
-    for (size_t i = 0; i < n; ++i) {
-        if (!std::isfinite(v[i])) return false;
-    }
-    return true;
-}
-
-}  // namespace
-
 const char* data_error_name(DataError error) {
     switch (error) {
         case DataError::ok:
@@ -67,21 +57,21 @@ DataError check_clip(const Clip& clip, uint32_t node_count, uint32_t morph_weigh
             if (!(c.times[k] > c.times[k - 1]) || !std::isfinite(c.times[k]))
                 return DataError::times_not_increasing;
         }
-        if (!finite(c.values, channel_value_count(c))) return DataError::non_finite_value;
+        if (!all_finite(c.values, channel_value_count(c))) return DataError::non_finite_value;
     }
     return DataError::ok;
 }
 
 DataError check_morph(const Morph& morph, uint32_t vertex_count) {
-    if (morph.weight_count > 0 && !finite(morph.default_weights, morph.weight_count))
+    if (morph.weight_count > 0 && !all_finite(morph.default_weights, morph.weight_count))
         return DataError::non_finite_value;
     for (uint32_t i = 0; i < morph.target_count; ++i) {
         const MorphTarget& t = morph.targets[i];
         if (t.weight >= morph.weight_count || t.vertex_begin > vertex_count ||
             t.vertex_count > vertex_count - t.vertex_begin || t.position_deltas == nullptr)
             return DataError::target_out_of_range;
-        if (!finite(t.position_deltas, size_t{t.vertex_count} * 3) ||
-            (t.normal_deltas != nullptr && !finite(t.normal_deltas, size_t{t.vertex_count} * 3)))
+        if (!all_finite(t.position_deltas, size_t{t.vertex_count} * 3) ||
+            (t.normal_deltas != nullptr && !all_finite(t.normal_deltas, size_t{t.vertex_count} * 3)))
             return DataError::non_finite_value;
     }
     return DataError::ok;

@@ -256,21 +256,17 @@ std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& p
     return out;
 }
 
-bool write_asset(const std::string& path, const std::vector<uint8_t>& bytes, std::string* error) {
+BakeError write_asset(const std::string& path, const std::vector<uint8_t>& bytes) {
     std::string tmp = path + ".tmp";
     FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) {
-        *error = "cannot open '" + tmp + "' for writing";
-        return false;
-    }
+    if (!f) return bake_error(BakeErrorCode::io, "cannot open '" + tmp + "' for writing");
     bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
     ok = (std::fclose(f) == 0) && ok;
     if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
         std::remove(tmp.c_str());
-        *error = "cannot write '" + path + "'";
-        return false;
+        return bake_error(BakeErrorCode::io, "cannot write '" + path + "'");
     }
-    return true;
+    return BakeError();
 }
 
 }  // namespace stipple::bake

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "bake/bake_error.h"
 #include "bake/point_hierarchy.h"
 #include "bake/raw_scene.h"
 
@@ -13,7 +14,7 @@ namespace stipple::bake {
 std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points);
 
 // Writes to `path` through a temporary file and a rename, so a failed bake never leaves a
-// partial asset behind.
-bool write_asset(const std::string& path, const std::vector<uint8_t>& bytes, std::string* error);
+// partial asset behind. Errors: io.
+[[nodiscard]] BakeError write_asset(const std::string& path, const std::vector<uint8_t>& bytes);
 
 }  // namespace stipple::bake

@@ -5,11 +5,13 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <new>
 #include <numeric>
 #include <queue>
 #include <tuple>
 
 #include "bake/bake_random.h"
+#include "anim/finite.h"
 #include "bake/base_mesh.h"
 #include "bake/radius_calibration.h"
 #include "bake/sample_elimination.h"
@@ -505,77 +507,45 @@ void truncate(size_t count, PointHierarchy* p) {
     *p = std::move(t);
 }
 
-}  // namespace
-
-bool build_point_hierarchy(const RawScene& scene, const HierarchyConfig& config,
-                           PointHierarchy* out, HierarchyStats* stats, std::string* error) {
-    if (scene.triangle_count() == 0) {
-        *error = "mesh has no triangles";
-        return false;
-    }
+// The input and the options, checked before any work.
+BakeError check_input(const RawScene& scene, const HierarchyConfig& config) {
+    if (scene.triangle_count() == 0) return malformed_input("mesh has no triangles");
     if (config.point_count == 0) {
-        *error = "point count must be positive";
-        return false;
+        return bake_error(BakeErrorCode::invalid_option, "point count must be positive");
     }
-    for (float x : scene.positions)
-        if (!std::isfinite(x)) {
-            *error = "mesh has a vertex position that is not finite";
-            return false;
-        }
+    if (!all_finite(scene.positions)) return malformed_input("mesh has a vertex position that is not finite");
     for (uint32_t i : scene.indices)
-        if (i >= scene.vertex_count()) {
-            *error = "mesh has a triangle index out of range";
-            return false;
-        }
-    if (config.method == HierarchyMethod::eliminate) {
-        // No connectivity needed: samples are drawn on the input triangles by area.
-        HierarchyStats st;
-        double area = 0;
-        for (uint32_t t = 0; t < scene.triangle_count(); ++t) {
-            const uint32_t* tri = &scene.indices[size_t(t) * 3];
-            const Vec3 a = input_position(scene, tri[0]);
-            const double twice =
-                ((input_position(scene, tri[1]) - a) % (input_position(scene, tri[2]) - a)).norm();
-            st.skipped_faces += twice == 0;
-            area += twice;
-        }
-        if (!(area > 0)) {
-            *error = "mesh has no non-degenerate triangles";
-            return false;
-        }
-        eliminate_hierarchy(scene, config, out, &st);
-        if (stats) *stats = st;
-        return true;
-    }
-    Builder b(scene, config);
-    b.build_graph();
-    if (b.mesh.n_faces() == 0) {
-        *error = "mesh has no non-degenerate triangles";
-        return false;
-    }
-    b.surface = std::make_unique<InputSurface>(scene, b.welded);
-    if (config.method != HierarchyMethod::simplify) {
-        b.jitter_off = true;
-        const size_t input_faces = b.mesh.n_faces();
-        const double per_point = config.method == HierarchyMethod::relax
-                                     ? std::max(config.relax.polygons_per_point, 1.0)
-                                     : 1.0;
-        const BaseMesh base =
-            b.base_mesh(size_t(std::ceil(double(config.point_count) * per_point)));
-        b.mesh.clear();  // the arrays above are all ch. 5 needs
-        b.mesh.garbage_collection();
-        std::vector<PointRecord>().swap(b.points);
-        HierarchyStats st = b.stats;
-        if (config.method == HierarchyMethod::relax)
-            relax_hierarchy(*b.surface, base, config, out, &st);
-        else
-            random_hierarchy(*b.surface, base, config, out);
-        truncate(config.point_count, out);
-        st.simplified_points = uint32_t(std::min<size_t>(input_faces, out->size()));
-        st.subdivided_points = uint32_t(out->size() - st.simplified_points);
-        if (stats) *stats = st;
-        return true;
-    }
+        if (i >= scene.vertex_count()) return malformed_input("mesh has a triangle index out of range");
+    return BakeError();
+}
+
+// Thesis ch. 5 (relax) or the random baseline: both start from a base mesh of about one
+// polygon per point (more for relax, RelaxConfig::polygons_per_point).
+void build_from_base_mesh(Builder& b, const HierarchyConfig& config, PointHierarchy* out,
+                          HierarchyStats* stats) {
+    b.jitter_off = true;
+    const size_t input_faces = b.mesh.n_faces();
+    const double per_point = config.method == HierarchyMethod::relax
+                                 ? std::max(config.relax.polygons_per_point, 1.0)
+                                 : 1.0;
+    const BaseMesh base = b.base_mesh(size_t(std::ceil(double(config.point_count) * per_point)));
+    b.mesh.clear();  // the arrays above are all ch. 5 needs
+    b.mesh.garbage_collection();
+    std::vector<PointRecord>().swap(b.points);
+    HierarchyStats st = b.stats;
+    if (config.method == HierarchyMethod::relax)
+        relax_hierarchy(*b.surface, base, config, out, &st);
+    else
+        random_hierarchy(*b.surface, base, config, out);
+    truncate(config.point_count, out);
+    st.simplified_points = uint32_t(std::min<size_t>(input_faces, out->size()));
+    st.subdivided_points = uint32_t(out->size() - st.simplified_points);
+    if (stats) *stats = st;
+}
+
+// Thesis ch. 4: randomize the input vertices, simplify, subdivide, then order the points.
+void build_by_simplification(Builder& b, const HierarchyConfig& config, PointHierarchy* out,
+                             HierarchyStats* stats) {
     b.randomize_inputs();
     b.simplify();
     size_t input_points = b.points.size();
@@ -587,7 +557,38 @@ bool build_point_hierarchy(const RawScene& scene, const HierarchyConfig& config,
     calibrate_radii(b.surface->area(), out);
     b.report("order", 1);
     if (stats) *stats = b.stats;
-    return true;
+}
+
+BakeError build(const RawScene& scene, const HierarchyConfig& config, PointHierarchy* out,
+                HierarchyStats* stats) {
+    const BakeError checked = check_input(scene, config);
+    if (!checked.ok()) return checked;
+    // Sample elimination needs no connectivity: samples are drawn on the input triangles.
+    if (config.method == HierarchyMethod::eliminate) {
+        return eliminate_hierarchy(scene, config, out, stats);
+    }
+    Builder b(scene, config);
+    b.build_graph();
+    if (b.mesh.n_faces() == 0) return malformed_input("mesh has no non-degenerate triangles");
+    b.surface = std::make_unique<InputSurface>(scene, b.welded);
+    if (config.method != HierarchyMethod::simplify) {
+        build_from_base_mesh(b, config, out, stats);
+    } else {
+        build_by_simplification(b, config, out, stats);
+    }
+    return BakeError();
+}
+
+}  // namespace
+
+BakeError build_point_hierarchy(const RawScene& scene, const HierarchyConfig& config,
+                                PointHierarchy* out, HierarchyStats* stats) {
+    try {
+        return build(scene, config, out, stats);
+    } catch (const std::bad_alloc&) {
+        *out = PointHierarchy();
+        return bake_error(BakeErrorCode::out_of_memory, "out of memory");
+    }
 }
 
 }  // namespace stipple::bake

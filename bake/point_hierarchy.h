@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "bake/bake_error.h"
 #include "bake/raw_scene.h"
 
 namespace stipple::bake {
@@ -82,7 +83,9 @@ struct HierarchyStats {
     uint32_t relax_iterations = 0;   // relax: token relaxation iterations, all levels
 };
 
-bool build_point_hierarchy(const RawScene& scene, const HierarchyConfig& config,
-                           PointHierarchy* out, HierarchyStats* stats, std::string* error);
+// Errors: malformed_input (no triangles, a non-finite position, an index out of range, no
+// surface area), invalid_option (a point count of 0), out_of_memory. `stats` may be null.
+[[nodiscard]] BakeError build_point_hierarchy(const RawScene& scene, const HierarchyConfig& config,
+                                              PointHierarchy* out, HierarchyStats* stats);
 
 }  // namespace stipple::bake

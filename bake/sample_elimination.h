@@ -21,8 +21,10 @@
 namespace stipple::bake {
 
 // Builds `config.point_count` points on the triangles of `scene` (degenerate triangles get
-// none). `stats` gets levels (the halving stages). Deterministic for a given seed.
-void eliminate_hierarchy(const RawScene& scene, const HierarchyConfig& config, PointHierarchy* out,
-                         HierarchyStats* stats);
+// none). `stats` (may be null) gets skipped_faces (the degenerate triangles) and levels (the
+// halving stages). Deterministic for a given seed. Errors: malformed_input when every
+// triangle is degenerate.
+[[nodiscard]] BakeError eliminate_hierarchy(const RawScene& scene, const HierarchyConfig& config,
+                                            PointHierarchy* out, HierarchyStats* stats);
 
 }  // namespace stipple::bake

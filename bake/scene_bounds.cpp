@@ -52,35 +52,34 @@ std::vector<float> sample_times(const anim::Clip& clip, const BoundsConfig& conf
     return t;
 }
 
-}  // namespace
+// The mesh posed by the runtime's jobs: locals and morph weights in, the box of the
+// morphed and skinned vertices out. Holds the buffers so that posing allocates nothing.
+struct Poser {
+    const RawScene& scene;
+    const RawAnimView& view;
+    size_t vertex_count;
+    uint32_t slots;
+    std::vector<anim::Trs> locals;
+    std::vector<glm::mat4> models, skin;
+    std::vector<float> weights, morphed, morphed_normals, skinned, skinned_normals;
 
-SceneBounds compute_scene_bounds(const RawScene& scene, const BoundsConfig& config) {
-    SceneBounds out;
-    const size_t vertex_count = scene.vertex_count();
-    if (!scene.animated()) {
-        box_of(scene.positions.data(), vertex_count, out.rest);
-        out.clips.assign(scene.clips.size() * 6, 0.0f);
-        for (size_t c = 0; c < scene.clips.size(); ++c)
-            std::copy(out.rest, out.rest + 6, out.clips.begin() + long(c) * 6);
-        return out;
-    }
-    RawAnimView view;
-    make_anim_view(scene, &view);
-    const anim::Skeleton& k = view.skeleton;
-    const uint32_t slots = view.morph.weight_count;
-    std::vector<anim::Trs> locals(k.node_count);
-    std::vector<glm::mat4> models(k.node_count), skin(k.joint_count);
-    std::vector<float> weights(slots + 1), morphed(vertex_count * 3),
-        morphed_normals(vertex_count * 3);
-    std::vector<float> skinned(vertex_count * 3), skinned_normals(vertex_count * 3);
-    uint32_t max_channels = 1;
-    for (const anim::Clip& c : view.clips) max_channels = std::max(max_channels, c.channel_count);
-    std::vector<uint32_t> cursors(max_channels);
-    anim::SamplingContext context;
-    context.cursors = {cursors.data(), cursors.size()};
+    Poser(const RawScene& s, const RawAnimView& v)
+        : scene(s),
+          view(v),
+          vertex_count(s.vertex_count()),
+          slots(v.morph.weight_count),
+          locals(v.skeleton.node_count),
+          models(v.skeleton.node_count),
+          skin(v.skeleton.joint_count),
+          weights(slots + 1),
+          morphed(vertex_count * 3),
+          morphed_normals(vertex_count * 3),
+          skinned(vertex_count * 3),
+          skinned_normals(vertex_count * 3) {}
 
     // Morph, skin and box the pose in `locals` / `weights`.
-    auto pose_box = [&](float* box) {
+    void pose_box(float* box) {
+        const anim::Skeleton& k = view.skeleton;
         anim::local_to_model(k, locals.data(), models.data());
         anim::joint_matrices(k, models.data(), skin.data());
         const size_t floats = vertex_count * 3;
@@ -111,36 +110,62 @@ SceneBounds compute_scene_bounds(const RawScene& scene, const BoundsConfig& conf
         job.out_normals = {skinned_normals.data(), floats};
         if (!job.run()) std::copy(in_p.data, in_p.data + floats, skinned.begin());
         box_of(skinned.data(), vertex_count, box);
-    };
-
-    anim::rest_pose(k, locals.data());
-    for (uint32_t i = 0; i < slots; ++i) weights[i] = view.morph.default_weights[i];
-    pose_box(out.rest);
-    out.clips.assign(view.clips.size() * 6, 0.0f);
-    for (size_t c = 0; c < view.clips.size(); ++c) {
-        float* box = out.clips.data() + c * 6;
-        bool first = true;
-        for (float t : sample_times(view.clips[c], config)) {
-            anim::SamplingJob job;
-            job.skeleton = &k;
-            job.clip = &view.clips[c];
-            job.time = t;
-            job.wrap = anim::Wrap::clamp;  // the last key too (looping would sample 0 there)
-            job.context = &context;
-            job.locals = {locals.data(), locals.size()};
-            job.morph_weights = {weights.data(), slots};
-            job.default_morph_weights = {view.morph.default_weights, slots};
-            if (!job.run()) continue;
-            float pose[6];
-            pose_box(pose);
-            if (first)
-                std::copy(pose, pose + 6, box);
-            else
-                grow(box, pose);
-            first = false;
-        }
-        if (first) std::copy(out.rest, out.rest + 6, box);
     }
+};
+
+// The box around every pose of `clip` at its sample times; the rest box if none samples.
+void clip_box(Poser& poser, const anim::Clip& clip, const BoundsConfig& config,
+              anim::SamplingContext* context, const float* rest, float* box) {
+    const uint32_t slots = poser.slots;
+    bool first = true;
+    for (float t : sample_times(clip, config)) {
+        anim::SamplingJob job;
+        job.skeleton = &poser.view.skeleton;
+        job.clip = &clip;
+        job.time = t;
+        job.wrap = anim::Wrap::clamp;  // the last key too (looping would sample 0 there)
+        job.context = context;
+        job.locals = {poser.locals.data(), poser.locals.size()};
+        job.morph_weights = {poser.weights.data(), slots};
+        job.default_morph_weights = {poser.view.morph.default_weights, slots};
+        if (!job.run()) continue;
+        float pose[6];
+        poser.pose_box(pose);
+        if (first)
+            std::copy(pose, pose + 6, box);
+        else
+            grow(box, pose);
+        first = false;
+    }
+    if (first) std::copy(rest, rest + 6, box);
+}
+
+}  // namespace
+
+SceneBounds compute_scene_bounds(const RawScene& scene, const BoundsConfig& config) {
+    SceneBounds out;
+    if (!scene.animated()) {
+        box_of(scene.positions.data(), scene.vertex_count(), out.rest);
+        out.clips.assign(scene.clips.size() * 6, 0.0f);
+        for (size_t c = 0; c < scene.clips.size(); ++c)
+            std::copy(out.rest, out.rest + 6, out.clips.begin() + long(c) * 6);
+        return out;
+    }
+    RawAnimView view;
+    make_anim_view(scene, &view);
+    Poser poser(scene, view);
+    uint32_t max_channels = 1;
+    for (const anim::Clip& c : view.clips) max_channels = std::max(max_channels, c.channel_count);
+    std::vector<uint32_t> cursors(max_channels);
+    anim::SamplingContext context;
+    context.cursors = {cursors.data(), cursors.size()};
+
+    anim::rest_pose(view.skeleton, poser.locals.data());
+    for (uint32_t i = 0; i < poser.slots; ++i) poser.weights[i] = view.morph.default_weights[i];
+    poser.pose_box(out.rest);
+    out.clips.assign(view.clips.size() * 6, 0.0f);
+    for (size_t c = 0; c < view.clips.size(); ++c)
+        clip_box(poser, view.clips[c], config, &context, out.rest, out.clips.data() + c * 6);
     return out;
 }
 

@@ -11,7 +11,7 @@
 namespace stipple::bake {
 
 // Parses "y" or "z" into format::kUpY / kUpZ.
-bool parse_up_axis(const std::string& text, uint32_t* out);
+[[nodiscard]] bool parse_up_axis(const std::string& text, uint32_t* out);
 
 // format::kUpZ: rotates the scene -90 degrees about +X, (x, y, z) -> (x, z, -y), so +Z
 // becomes +Y and a Z-up model's front (-Y, as Blender and most Z-up tools face it) becomes

@@ -1,20 +1,14 @@
 #include "bake/silhouette_edges.h"
 
 #include <algorithm>
-#include <array>
-#include <map>
+
+#include "bake/position_weld.h"
 
 namespace stipple::bake {
 
 std::vector<uint32_t> silhouette_edges(const RawScene& scene) {
     // Same position = same vertex for connectivity.
-    std::map<std::array<float, 3>, uint32_t> ids;
-    std::vector<uint32_t> welded(scene.vertex_count());
-    for (size_t v = 0; v < scene.vertex_count(); ++v) {
-        const float* p = &scene.positions[v * 3];
-        welded[v] =
-            ids.emplace(std::array<float, 3>{p[0], p[1], p[2]}, uint32_t(ids.size())).first->second;
-    }
+    const std::vector<uint32_t> welded = weld_by_position(scene);
     struct Half {
         uint32_t lo, hi, face, a, b;
     };

@@ -1,5 +1,5 @@
 // Static mesh importer (OBJ, PLY, STL through OpenMesh's readers) and the extension
-// dispatcher. Also home of the vertex normal computation both importers share.
+// dispatcher. Vertex normals come from bake/vertex_normals.h, as for every importer.
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <algorithm>
@@ -15,47 +15,11 @@
 #include <string>
 #include <vector>
 
+#include "anim/finite.h"
 #include "bake/scene_import.h"
+#include "bake/vertex_normals.h"
 
 namespace stipple::bake {
-
-namespace detail {
-
-// Area-weighted vertex normals: each vertex gets the sum of the cross products
-// (p1 - p0) x (p2 - p0) of its triangles, whose length is twice the triangle area, then
-// normalised (Max, "Weights for Computing Vertex Normals from Facet Normals", JGT 1999,
-// the area-weighted variant). A vertex whose triangles all have zero area gets +z.
-void compute_vertex_normals(const std::vector<float>& positions,
-                            const std::vector<uint32_t>& indices, std::vector<float>* normals) {
-    const size_t vertex_count = positions.size() / 3;
-    std::vector<double> sum(vertex_count * 3, 0.0);
-    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
-        const uint32_t v[3] = {indices[t], indices[t + 1], indices[t + 2]};
-        assert(v[0] < vertex_count && v[1] < vertex_count && v[2] < vertex_count);
-        double e1[3], e2[3];
-        for (int c = 0; c < 3; ++c) {
-            e1[c] = double(positions[v[1] * 3 + c]) - positions[v[0] * 3 + c];
-            e2[c] = double(positions[v[2] * 3 + c]) - positions[v[0] * 3 + c];
-        }
-        const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                             e1[0] * e2[1] - e1[1] * e2[0]};
-        for (uint32_t vi : v) {
-            for (int c = 0; c < 3; ++c) sum[vi * 3 + c] += n[c];
-        }
-    }
-    normals->assign(vertex_count * 3, 0.0f);
-    for (size_t i = 0; i < vertex_count; ++i) {
-        const double* s = &sum[i * 3];
-        const double len = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
-        if (std::isfinite(len) && len > 0.0) {
-            for (int c = 0; c < 3; ++c) (*normals)[i * 3 + c] = float(s[c] / len);
-        } else {
-            (*normals)[i * 3 + 2] = 1.0f;
-        }
-    }
-}
-
-}  // namespace detail
 
 namespace {
 
@@ -108,10 +72,23 @@ class OpenMeshLogCapture {
     bool out_enabled_;
 };
 
-bool read_static_mesh(const std::string& path, RawScene* scene, std::string* err) {
+// One warning per distinct reader message, with its count.
+void add_reader_warnings(const std::vector<std::string>& messages, RawScene* scene) {
+    std::map<std::string, size_t> counts;
+    std::vector<std::string> distinct;
+    for (const std::string& m : messages) {
+        if (counts[m]++ == 0) distinct.push_back(m);
+    }
+    for (const std::string& m : distinct) {
+        const size_t n = counts[m];
+        scene->warnings.push_back("OpenMesh reader: " + m +
+                                  (n > 1 ? " (" + std::to_string(n) + " times)" : ""));
+    }
+}
+
+BakeError read_static_mesh(const std::string& path, RawScene* scene) {
     if (!std::ifstream(path, std::ios::binary)) {
-        *err = "cannot open file";
-        return false;
+        return bake_error(BakeErrorCode::io, "cannot open file");
     }
     OpenMesh::TriMesh_ArrayKernelT<> mesh;
     bool ok = false;
@@ -124,24 +101,12 @@ bool read_static_mesh(const std::string& path, RawScene* scene, std::string* err
         messages = capture.lines();
     }
     if (!ok) {
-        *err = "cannot read mesh" + (messages.empty() ? std::string() : ": " + messages.front());
-        return false;
+        return malformed_input("cannot read mesh" +
+                         (messages.empty() ? std::string() : ": " + messages.front()));
     }
-    // One warning per distinct reader message, with its count.
-    std::map<std::string, size_t> counts;
-    std::vector<std::string> distinct;
-    for (const std::string& m : messages) {
-        if (counts[m]++ == 0) distinct.push_back(m);
-    }
-    for (const std::string& m : distinct) {
-        const size_t n = counts[m];
-        scene->warnings.push_back("OpenMesh reader: " + m +
-                                  (n > 1 ? " (" + std::to_string(n) + " times)" : ""));
-    }
-
+    add_reader_warnings(messages, scene);
     if (mesh.n_vertices() > std::numeric_limits<uint32_t>::max()) {
-        *err = "too many vertices";
-        return false;
+        return bake_error(BakeErrorCode::unsupported, "too many vertices");
     }
     // Triangles as fans over each face's vertex loop (a TriMesh already holds triangles;
     // the fan keeps this correct for any face size).
@@ -154,10 +119,7 @@ bool read_static_mesh(const std::string& path, RawScene* scene, std::string* err
             triangles.insert(triangles.end(), {loop[0], loop[i], loop[i + 1]});
         }
     }
-    if (triangles.empty()) {
-        *err = "no triangles found";
-        return false;
-    }
+    if (triangles.empty()) return malformed_input("no triangles found");
     // Keep only the vertices the triangles use: isolated vertices, and the spare copies
     // OpenMesh makes when it repairs non-manifold faces, are dropped silently.
     constexpr uint32_t kUnused = std::numeric_limits<uint32_t>::max();
@@ -167,19 +129,16 @@ bool read_static_mesh(const std::string& path, RawScene* scene, std::string* err
         if (slot == kUnused) {
             slot = uint32_t(scene->positions.size() / 3);
             const auto p = mesh.point(OpenMesh::VertexHandle(int(index)));
-            for (int c = 0; c < 3; ++c) {
-                if (!std::isfinite(p[c])) {
-                    *err = "vertex " + std::to_string(index) + " has a non-finite position";
-                    return false;
-                }
-                scene->positions.push_back(p[c]);
+            if (!all_finite(p.data(), 3)) {
+                return malformed_input("vertex " + std::to_string(index) + " has a non-finite position");
             }
+            for (int c = 0; c < 3; ++c) scene->positions.push_back(p[c]);
         }
         index = slot;
     }
     scene->indices = std::move(triangles);
-    detail::compute_vertex_normals(scene->positions, scene->indices, &scene->normals);
-    return true;
+    compute_vertex_normals(scene->positions, scene->indices, &scene->normals);
+    return BakeError();
 }
 
 std::string lowercase_extension(const std::string& path) {
@@ -194,42 +153,37 @@ std::string lowercase_extension(const std::string& path) {
 
 }  // namespace
 
-bool import_static_mesh(const std::string& path, RawScene* out, std::string* error) {
+BakeError import_static_mesh(const std::string& path, RawScene* out) {
     assert(out != nullptr);
     RawScene scene;
-    std::string err;
-    bool ok = false;
+    BakeError error;
     try {
-        ok = read_static_mesh(path, &scene, &err);
+        error = read_static_mesh(path, &scene);
     } catch (const std::bad_alloc&) {
-        err = "out of memory";
+        error = bake_error(BakeErrorCode::out_of_memory, "out of memory");
     } catch (const std::exception& e) {
-        err = std::string("mesh reader failed: ") + e.what();
-        std::replace(err.begin(), err.end(), '\n', ' ');
+        error = bake_error(BakeErrorCode::internal, std::string("mesh reader failed: ") + e.what());
+        std::replace(error.message.begin(), error.message.end(), '\n', ' ');
     } catch (...) {
-        err = "mesh reader failed";
+        error = bake_error(BakeErrorCode::internal, "mesh reader failed");
     }
-    if (!ok) {
+    if (!error.ok()) {
         *out = RawScene();
-        if (error) *error = path + ": " + err;
-        return false;
+        return prefixed(path + ": ", std::move(error));
     }
     *out = std::move(scene);
-    return true;
+    return BakeError();
 }
 
-bool import_scene(const std::string& path, RawScene* out, std::string* error) {
+BakeError import_scene(const std::string& path, RawScene* out) {
     assert(out != nullptr);
     const std::string ext = lowercase_extension(path);
-    if (ext == ".gltf" || ext == ".glb") return import_gltf(path, out, error);
-    if (ext == ".obj" || ext == ".ply" || ext == ".stl")
-        return import_static_mesh(path, out, error);
+    if (ext == ".gltf" || ext == ".glb") return import_gltf(path, out);
+    if (ext == ".obj" || ext == ".ply" || ext == ".stl") return import_static_mesh(path, out);
     *out = RawScene();
-    if (error) {
-        *error = path + ": unsupported file extension '" + ext +
-                 "' (expected .gltf, .glb, .obj, .ply or .stl)";
-    }
-    return false;
+    return bake_error(BakeErrorCode::unsupported,
+                      path + ": unsupported file extension '" + ext +
+                          "' (expected .gltf, .glb, .obj, .ply or .stl)");
 }
 
 }  // namespace stipple::bake

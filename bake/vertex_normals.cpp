@@ -1,11 +1,13 @@
 #include "bake/vertex_normals.h"
 
 #include <algorithm>
-#include <array>
+#include <cassert>
 #include <cmath>
 #include <map>
 #include <numeric>
 #include <utility>
+
+#include "bake/position_weld.h"
 
 namespace stipple::bake {
 
@@ -18,14 +20,6 @@ Vec3 position(const RawScene& s, uint32_t v) {
             s.positions[size_t(v) * 3 + 2]};
 }
 
-// Area-weighted face normal (cross product, twice the area long).
-Vec3 face_normal(const RawScene& s, uint32_t t) {
-    const uint32_t* i = &s.indices[size_t(t) * 3];
-    Vec3 a = position(s, i[0]), b = position(s, i[1]), c = position(s, i[2]);
-    Vec3 u = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    return {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-}
-
 double length(const Vec3& v) {
     return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
 }
@@ -35,7 +29,118 @@ uint32_t find(std::vector<uint32_t>& parent, uint32_t x) {
     return x;
 }
 
+// Corners (3 per triangle) grouped into smoothing groups, as a union-find forest: two
+// corners at the same welded vertex join when their faces share an edge there and their
+// unit normals' dot product is at least `cos_crease`.
+std::vector<uint32_t> smoothing_groups(const RawScene& s, const std::vector<uint32_t>& welded,
+                                       const std::vector<Vec3>& unit, double cos_crease) {
+    const size_t tris = s.triangle_count();
+    std::vector<uint32_t> parent(tris * 3);
+    std::iota(parent.begin(), parent.end(), 0u);
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> edge_corner;  // (from, to) -> corner
+    for (uint32_t t = 0; t < tris; ++t)
+        for (uint32_t k = 0; k < 3; ++k) {
+            uint32_t a = welded[s.indices[t * 3 + k]], b = welded[s.indices[t * 3 + (k + 1) % 3]];
+            edge_corner[{a, b}] = t * 3 + k;
+        }
+    for (uint32_t t = 0; t < tris; ++t)
+        for (uint32_t k = 0; k < 3; ++k) {
+            uint32_t a = welded[s.indices[t * 3 + k]], b = welded[s.indices[t * 3 + (k + 1) % 3]];
+            auto it = edge_corner.find({b, a});  // the neighbour across this edge
+            if (it == edge_corner.end()) continue;
+            uint32_t g = it->second / 3;
+            const Vec3 &n0 = unit[t], &n1 = unit[g];
+            if (n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2] < cos_crease) continue;
+            // Corner of t at a joins the corner of g at a, and likewise at b.
+            uint32_t ga = it->second % 3, g_a = g * 3 + (ga + 1) % 3, g_b = g * 3 + ga;
+            parent[find(parent, t * 3 + k)] = find(parent, g_a);
+            parent[find(parent, t * 3 + (k + 1) % 3)] = find(parent, g_b);
+        }
+    return parent;
+}
+
+// Appends a copy of vertex `v` (position, skin data; normal set by the caller).
+void duplicate_vertex(uint32_t v, RawScene* scene) {
+    RawScene& s = *scene;
+    for (int i = 0; i < 3; ++i) {
+        s.positions.push_back(s.positions[size_t(v) * 3 + size_t(i)]);
+        s.normals.push_back(0.0f);
+    }
+    if (!s.joints.empty())
+        for (int i = 0; i < 4; ++i) {
+            s.joints.push_back(s.joints[size_t(v) * 4 + size_t(i)]);
+            s.weights.push_back(s.weights[size_t(v) * 4 + size_t(i)]);
+        }
+}
+
+// Writes each group's normal to its corners' vertices. Each input vertex keeps its index
+// for the first smoothing group that uses it (so the importer's vertex order, sorted by
+// influence count, survives); further groups get copies appended after the input vertices.
+void write_group_normals(const std::vector<Vec3>& group_normal, std::vector<uint32_t>& parent,
+                         RawScene* scene) {
+    RawScene& s = *scene;
+    const size_t tris = s.triangle_count();
+    std::vector<int64_t> first_group(s.vertex_count(), -1);
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> copy_of;
+    auto set_normal = [&](uint32_t vertex, uint32_t group) {
+        const Vec3& n = group_normal[group];
+        double len = length(n);
+        if (len > 0)
+            for (int i = 0; i < 3; ++i)
+                s.normals[size_t(vertex) * 3 + size_t(i)] = float(n[size_t(i)] / len);
+    };
+    for (uint32_t c = 0; c < tris * 3; ++c) {
+        uint32_t v = s.indices[c], group = find(parent, c);
+        if (first_group[v] < 0 || first_group[v] == int64_t(group)) {
+            first_group[v] = group;
+            set_normal(v, group);
+            continue;
+        }
+        auto [it, added] = copy_of.emplace(std::make_pair(v, group), uint32_t(s.vertex_count()));
+        s.indices[c] = it->second;
+        if (!added) continue;
+        duplicate_vertex(v, &s);
+        set_normal(it->second, group);
+    }
+}
+
 }  // namespace
+
+Vec3 face_normal(const std::vector<float>& positions, const std::vector<uint32_t>& indices,
+                 size_t t) {
+    const uint32_t* i = &indices[t * 3];
+    Vec3 p[3];
+    for (int k = 0; k < 3; ++k)
+        p[k] = {positions[size_t(i[k]) * 3], positions[size_t(i[k]) * 3 + 1],
+                positions[size_t(i[k]) * 3 + 2]};
+    const Vec3 u = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    const Vec3 w = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    return {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+}
+
+void compute_vertex_normals(const std::vector<float>& positions,
+                            const std::vector<uint32_t>& indices, std::vector<float>* normals) {
+    const size_t vertex_count = positions.size() / 3;
+    std::vector<double> sum(vertex_count * 3, 0.0);
+    for (size_t t = 0; t * 3 + 2 < indices.size(); ++t) {
+        const uint32_t* v = &indices[t * 3];
+        assert(v[0] < vertex_count && v[1] < vertex_count && v[2] < vertex_count);
+        const Vec3 n = face_normal(positions, indices, t);
+        for (int k = 0; k < 3; ++k) {
+            for (int c = 0; c < 3; ++c) sum[size_t(v[k]) * 3 + size_t(c)] += n[size_t(c)];
+        }
+    }
+    normals->assign(vertex_count * 3, 0.0f);
+    for (size_t i = 0; i < vertex_count; ++i) {
+        const double* s = &sum[i * 3];
+        const double len = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+        if (std::isfinite(len) && len > 0.0) {
+            for (int c = 0; c < 3; ++c) (*normals)[i * 3 + size_t(c)] = float(s[c] / len);
+        } else {
+            (*normals)[i * 3 + 2] = 1.0f;
+        }
+    }
+}
 
 bool parse_normal_mode(const std::string& text, NormalMode* out) {
     if (text == "input")
@@ -63,7 +168,7 @@ bool orient_outward(RawScene* scene) {
         }
     for (uint32_t t = 0; t < s.triangle_count(); ++t) {
         const uint32_t* i = &s.indices[size_t(t) * 3];
-        const Vec3 a = position(s, i[0]), n = face_normal(s, t);
+        const Vec3 a = position(s, i[0]), n = face_normal(s.positions, s.indices, t);
         volume += (a[0] * n[0] + a[1] * n[1] + a[2] * n[2]) / 6.0;
     }
     const double box = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
@@ -89,46 +194,16 @@ size_t assign_normals(const NormalConfig& config, RawScene* scene) {
                                   ? -2.0  // everything is smooth
                                   : std::cos(double(config.crease_degrees) * M_PI / 180.0);
     const size_t tris = s.triangle_count();
-
-    // Weld by position: seams split for UVs must not split the shading.
-    std::map<std::array<float, 3>, uint32_t> ids;
-    std::vector<uint32_t> welded(s.vertex_count());
-    for (size_t v = 0; v < s.vertex_count(); ++v)
-        welded[v] = ids.emplace(std::array<float, 3>{s.positions[v * 3], s.positions[v * 3 + 1],
-                                                     s.positions[v * 3 + 2]},
-                                uint32_t(ids.size()))
-                        .first->second;
+    // Welded by position: seams split for UVs must not split the shading.
+    const std::vector<uint32_t> welded = weld_by_position(s);
     std::vector<Vec3> normal(tris), unit(tris);
     for (uint32_t t = 0; t < tris; ++t) {
-        normal[t] = face_normal(s, t);
+        normal[t] = face_normal(s.positions, s.indices, t);
         double len = length(normal[t]);
         unit[t] = len > 0 ? Vec3{normal[t][0] / len, normal[t][1] / len, normal[t][2] / len}
                           : Vec3{0, 0, 0};
     }
-
-    // Corners grouped into smoothing groups: two corners at the same welded vertex join
-    // when their faces share an edge there and meet at less than the crease angle.
-    std::vector<uint32_t> parent(tris * 3);
-    std::iota(parent.begin(), parent.end(), 0u);
-    std::map<std::pair<uint32_t, uint32_t>, uint32_t> edge_corner;  // (from, to) -> corner
-    for (uint32_t t = 0; t < tris; ++t)
-        for (uint32_t k = 0; k < 3; ++k) {
-            uint32_t a = welded[s.indices[t * 3 + k]], b = welded[s.indices[t * 3 + (k + 1) % 3]];
-            edge_corner[{a, b}] = t * 3 + k;
-        }
-    for (uint32_t t = 0; t < tris; ++t)
-        for (uint32_t k = 0; k < 3; ++k) {
-            uint32_t a = welded[s.indices[t * 3 + k]], b = welded[s.indices[t * 3 + (k + 1) % 3]];
-            auto it = edge_corner.find({b, a});  // the neighbour across this edge
-            if (it == edge_corner.end()) continue;
-            uint32_t g = it->second / 3;
-            const Vec3 &n0 = unit[t], &n1 = unit[g];
-            if (n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2] < cos_crease) continue;
-            // Corner of t at a joins the corner of g at a, and likewise at b.
-            uint32_t ga = it->second % 3, g_a = g * 3 + (ga + 1) % 3, g_b = g * 3 + ga;
-            parent[find(parent, t * 3 + k)] = find(parent, g_a);
-            parent[find(parent, t * 3 + (k + 1) % 3)] = find(parent, g_b);
-        }
+    std::vector<uint32_t> parent = smoothing_groups(s, welded, unit, cos_crease);
 
     // One normal per group: sum of the area-weighted normals of its faces.
     std::vector<Vec3> group_normal(tris * 3, Vec3{0, 0, 0});
@@ -136,41 +211,8 @@ size_t assign_normals(const NormalConfig& config, RawScene* scene) {
         Vec3& g = group_normal[find(parent, c)];
         for (int i = 0; i < 3; ++i) g[size_t(i)] += normal[c / 3][size_t(i)];
     }
-
-    // Each input vertex keeps its index for the first smoothing group that uses it (so the
-    // importer's vertex order, sorted by influence count, survives); further groups get
-    // copies appended after the input vertices.
     const size_t before = s.vertex_count();
-    std::vector<int64_t> first_group(before, -1);
-    std::map<std::pair<uint32_t, uint32_t>, uint32_t> copy_of;
-    auto set_normal = [&](uint32_t vertex, uint32_t group) {
-        const Vec3& n = group_normal[group];
-        double len = length(n);
-        if (len > 0)
-            for (int i = 0; i < 3; ++i)
-                s.normals[size_t(vertex) * 3 + size_t(i)] = float(n[size_t(i)] / len);
-    };
-    for (uint32_t c = 0; c < tris * 3; ++c) {
-        uint32_t v = s.indices[c], group = find(parent, c);
-        if (first_group[v] < 0 || first_group[v] == int64_t(group)) {
-            first_group[v] = group;
-            set_normal(v, group);
-            continue;
-        }
-        auto [it, added] = copy_of.emplace(std::make_pair(v, group), uint32_t(s.vertex_count()));
-        s.indices[c] = it->second;
-        if (!added) continue;
-        for (int i = 0; i < 3; ++i) {
-            s.positions.push_back(s.positions[size_t(v) * 3 + size_t(i)]);
-            s.normals.push_back(0.0f);
-        }
-        set_normal(it->second, group);
-        if (!s.joints.empty())
-            for (int i = 0; i < 4; ++i) {
-                s.joints.push_back(s.joints[size_t(v) * 4 + size_t(i)]);
-                s.weights.push_back(s.weights[size_t(v) * 4 + size_t(i)]);
-            }
-    }
+    write_group_normals(group_normal, parent, &s);
     return s.vertex_count() - before;
 }
 

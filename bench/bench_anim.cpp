@@ -70,11 +70,10 @@ struct Cesium {
     stipple::bake::RawScene scene;
     stipple::bake::RawAnimView view;
     Cesium() {
-        std::string error;
-        if (!stipple::bake::import_gltf(
-                std::string(STIPPLE_SOURCE_DIR) + "/assets/CesiumMan/CesiumMan.glb", &scene,
-                &error)) {
-            std::fprintf(stderr, "%s\n", error.c_str());
+        const stipple::bake::BakeError error = stipple::bake::import_gltf(
+            std::string(STIPPLE_SOURCE_DIR) + "/assets/CesiumMan/CesiumMan.glb", &scene);
+        if (!error.ok()) {
+            std::fprintf(stderr, "%s\n", error.message.c_str());
             std::abort();
         }
         stipple::bake::make_anim_view(scene, &view);
@@ -102,7 +101,7 @@ void BM_Sample(benchmark::State& state) {
     float t = 0;
     for (auto _ : state) {
         job.time = t;
-        job.run();
+        benchmark::DoNotOptimize(job.run());
         benchmark::ClobberMemory();
         t += 1.0f / 60.0f;
     }
@@ -134,17 +133,17 @@ struct PoseBuffers {
         s.time = t;
         s.context = &context;
         s.locals = {locals.data(), locals.size()};
-        s.run();
+        benchmark::DoNotOptimize(s.run());
         LocalToModelJob l;
         l.skeleton = &c.view.skeleton;
         l.locals = {locals.data(), locals.size()};
         l.models = {models.data(), models.size()};
-        l.run();
+        benchmark::DoNotOptimize(l.run());
         JointMatrixJob j;
         j.skeleton = &c.view.skeleton;
         j.models = {models.data(), models.size()};
         j.joint_matrices = {palette.data(), palette.size()};
-        j.run();
+        benchmark::DoNotOptimize(j.run());
     }
 };
 
@@ -216,7 +215,8 @@ void BM_Skin(benchmark::State& state) {
     b.pose(c, 0.37f);
     std::vector<DqsJoint> dq(b.palette.size());
     uint32_t stretched = 0;
-    dqs_joints({b.palette.data(), b.palette.size()}, {dq.data(), dq.size()}, &stretched);
+    if (!dqs_joints({b.palette.data(), b.palette.size()}, {dq.data(), dq.size()}, &stretched))
+        return state.SkipWithError("dqs_joints failed");
     SkinningJob job;
     job.method = method >= 2 ? Skinning::dqs : Skinning::lbs;
     job.vertex_count = m.count();
@@ -233,9 +233,9 @@ void BM_Skin(benchmark::State& state) {
     const auto start = std::chrono::steady_clock::now();
     for (auto _ : state) {
         if (scalar) {
-            job.run_scalar();
+            benchmark::DoNotOptimize(job.run_scalar());
         } else {
-            job.run();
+            benchmark::DoNotOptimize(job.run());
         }
         benchmark::ClobberMemory();
     }
@@ -270,7 +270,7 @@ void BM_Frame(benchmark::State& state) {
     float t = 0;
     for (auto _ : state) {
         b.pose(c, t);
-        job.run();
+        benchmark::DoNotOptimize(job.run());
         benchmark::ClobberMemory();
         t += 1.0f / 60.0f;
     }

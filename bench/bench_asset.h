@@ -13,13 +13,12 @@ namespace stipple::bench {
 // assets/<relative> baked to `points` points; false if anything fails.
 inline bool bake_asset(const char* relative, uint32_t points, Asset* out) {
     bake::RawScene scene;
-    std::string error;
-    if (!bake::import_scene(std::string(STIPPLE_SOURCE_DIR) + "/assets/" + relative, &scene, &error))
+    if (!bake::import_scene(std::string(STIPPLE_SOURCE_DIR) + "/assets/" + relative, &scene).ok())
         return false;
     bake::HierarchyConfig config;
     config.point_count = points;
     bake::PointHierarchy hierarchy;
-    if (!bake::build_point_hierarchy(scene, config, &hierarchy, nullptr, &error)) return false;
+    if (!bake::build_point_hierarchy(scene, config, &hierarchy, nullptr).ok()) return false;
     std::vector<uint8_t> bytes = bake::encode_asset(scene, hierarchy);
     return load_asset_memory(bytes.data(), bytes.size(), out).ok();
 }

@@ -27,12 +27,11 @@ Setup* setup(uint32_t points) {
     static std::unique_ptr<Setup> cache[2];
     static stipple::platform::HeadlessContext context;
     static bool have_context = false;
-    std::string error;
     if (!have_context) {
         stipple::platform::HeadlessConfig hc;
         hc.width = 1280;
         hc.height = 720;
-        if (!stipple::platform::create_headless_context(hc, &context, &error)) return nullptr;
+        if (!stipple::platform::create_headless_context(hc, &context).ok()) return nullptr;
         have_context = true;
     }
     int slot = points > 50000;
@@ -40,15 +39,13 @@ Setup* setup(uint32_t points) {
     auto s = std::make_unique<Setup>();
     if (!stipple::bench::bake_asset("CesiumMan/CesiumMan.glb", points, &s->asset)) return nullptr;
     stipple::GlApi gl;
-    if (stipple::load_gl_api(stipple::platform::proc_loader(context), &gl)) return nullptr;
-    stipple::PipelineConfig pc;
+    if (!stipple::load_gl_api(stipple::platform::proc_loader(context), &gl).ok()) return nullptr;
+    stipple::FrameConfig pc;
     pc.width = 1280;
     pc.height = 720;
     pc.yaw_degrees = -60;
     s->pipeline = std::make_unique<stipple::Pipeline>();
-    char message[256];
-    if (!stipple::pipeline_init(s->pipeline.get(), s->asset, gl, pc, message, sizeof(message)))
-        return nullptr;
+    if (!stipple::pipeline_init(s->pipeline.get(), s->asset, gl, pc).ok()) return nullptr;
     s->fixed_sizes.assign(s->asset.points.point_count, 2.5f);
     stipple::pipeline_frame(s->pipeline.get(), 0, 0.0f, nullptr);  // compile shaders
     cache[slot] = std::move(s);

@@ -46,7 +46,8 @@ Fixture* fixture(uint32_t points) {
                           f->bind_normals.data());
     const double area = stipple::surface_area(m);
     if (!stipple::triangulate_points(uint32_t(n), f->bind.data(), f->bind_normals.data(), area, &m,
-                                     f->asset.points.host_triangle, &f->triangles))
+                                     f->asset.points.host_triangle, &f->triangles)
+             .ok())
         return nullptr;
     f->domain.vertex_count = uint32_t(n);
     f->domain.triangle_count = f->triangles.triangle_count;
@@ -54,7 +55,8 @@ Fixture* fixture(uint32_t points) {
     f->domain.normals = f->bind_normals.data();
     f->domain.indices = f->triangles.indices.get();
     if (!stipple::refinement_init(&f->refinement, f->domain, f->asset.points, f->bind.data(),
-                                  stipple::RefinementDomain::points))
+                                  stipple::RefinementDomain::points)
+             .ok())
         return nullptr;
     f->positions.resize(std::max(capacity, n) * 3);
     f->normals.resize(std::max(capacity, n) * 3);
@@ -142,9 +144,10 @@ void BM_TriangulateAtLoad(benchmark::State& state) {
     const uint32_t n = f->asset.points.point_count;
     for (auto _ : state) {
         stipple::PointTriangulation t;
-        stipple::triangulate_points(n, f->bind.data(), f->bind_normals.data(),
-                                    stipple::surface_area(f->asset.mesh), &f->asset.mesh,
-                                    f->asset.points.host_triangle, &t);
+        const stipple::Status st = stipple::triangulate_points(
+            n, f->bind.data(), f->bind_normals.data(), stipple::surface_area(f->asset.mesh),
+            &f->asset.mesh, f->asset.points.host_triangle, &t);
+        if (!st.ok()) return state.SkipWithError(st.message);
         benchmark::DoNotOptimize(t.triangle_count);
     }
     state.counters["per_point"] = benchmark::Counter(

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <utility>
 
 namespace stipple::platform {
 
@@ -24,6 +25,10 @@ void* osmesa_proc(const char* name) {
 }
 #endif
 
+ContextStatus failed(std::string why) {
+    return {ContextError::no_context, std::move(why)};
+}
+
 std::string egl_error(const char* what) {
     char buf[96];
     std::snprintf(buf, sizeof(buf), "%s failed (EGL error 0x%04x)", what, eglGetError());
@@ -32,142 +37,127 @@ std::string egl_error(const char* what) {
 
 // Initialises `display` and makes a GLES 3 context current without any surface
 // (EGL_KHR_surfaceless_context); the renderer draws into its own framebuffer object.
-bool make_es3_context(EGLDisplay display, HeadlessContext* out, std::string* error) {
+ContextStatus make_es3_context(EGLDisplay display, HeadlessContext* out) {
     EGLint major = 0, minor = 0;
-    if (!eglInitialize(display, &major, &minor)) {
-        *error = egl_error("eglInitialize");
-        return false;
-    }
+    if (!eglInitialize(display, &major, &minor)) return failed(egl_error("eglInitialize"));
     const EGLint config_attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE,
                                      EGL_OPENGL_ES3_BIT, EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8,
                                      EGL_BLUE_SIZE, 8, EGL_DEPTH_SIZE, 24, EGL_NONE};
     EGLConfig config = nullptr;
     EGLint count = 0;
     if (!eglChooseConfig(display, config_attribs, &config, 1, &count) || count == 0) {
-        *error = "no EGL config with GLES 3 and pbuffer support";
+        const ContextStatus st = failed("no EGL config with GLES 3 and pbuffer support");
         eglTerminate(display);
-        return false;
+        return st;
     }
     if (!eglBindAPI(EGL_OPENGL_ES_API)) {
-        *error = egl_error("eglBindAPI(GLES)");
+        const ContextStatus st = failed(egl_error("eglBindAPI(GLES)"));
         eglTerminate(display);
-        return false;
+        return st;
     }
     const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_NONE};
     EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs);
     if (context == EGL_NO_CONTEXT) {
-        *error = egl_error("eglCreateContext(GLES 3)");
+        const ContextStatus st = failed(egl_error("eglCreateContext(GLES 3)"));
         eglTerminate(display);
-        return false;
+        return st;
     }
     if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
-        *error = egl_error("eglMakeCurrent(surfaceless)");
+        const ContextStatus st = failed(egl_error("eglMakeCurrent(surfaceless)"));
         eglDestroyContext(display, context);
         eglTerminate(display);
-        return false;
+        return st;
     }
     out->egl_display = display;
     out->egl_context = context;
-    return true;
+    return {};
 }
 
-bool try_egl_surfaceless(HeadlessContext* out, std::string* error) {
+ContextStatus try_egl_surfaceless(HeadlessContext* out) {
     EGLDisplay display =
         eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-    if (display == EGL_NO_DISPLAY) {
-        *error = "EGL surfaceless platform unavailable";
-        return false;
-    }
-    return make_es3_context(display, out, error);
+    if (display == EGL_NO_DISPLAY) return failed("EGL surfaceless platform unavailable");
+    return make_es3_context(display, out);
 }
 
-bool try_egl_device(HeadlessContext* out, std::string* error) {
+ContextStatus try_egl_device(HeadlessContext* out) {
     auto query_devices =
         reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-    if (!query_devices) {
-        *error = "EGL_EXT_device_enumeration unavailable";
-        return false;
-    }
+    if (!query_devices) return failed("EGL_EXT_device_enumeration unavailable");
     EGLDeviceEXT devices[8];
     EGLint count = 0;
-    if (!query_devices(8, devices, &count) || count == 0) {
-        *error = "no EGL devices";
-        return false;
-    }
+    if (!query_devices(8, devices, &count) || count == 0) return failed("no EGL devices");
+    ContextStatus st = failed("no EGL device gave a GLES 3 context");
     for (EGLint i = 0; i < count; ++i) {
         EGLDisplay display = eglGetPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
-        if (display != EGL_NO_DISPLAY && make_es3_context(display, out, error)) return true;
+        if (display == EGL_NO_DISPLAY) continue;
+        st = make_es3_context(display, out);
+        if (st.ok()) return st;
     }
-    if (error->empty()) *error = "no EGL device gave a GLES 3 context";
-    return false;
+    return st;
 }
 
-bool try_osmesa(const HeadlessConfig& config, HeadlessContext* out, std::string* error) {
+ContextStatus try_osmesa(const HeadlessConfig& config, HeadlessContext* out) {
 #ifdef STIPPLE_HAVE_OSMESA
     OSMesaContext context = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
-    if (!context) {
-        *error = "OSMesaCreateContextExt failed";
-        return false;
-    }
+    if (!context) return failed("OSMesaCreateContextExt failed");
     size_t bytes = size_t(config.width) * size_t(config.height) * 4;
     out->osmesa_buffer = static_cast<unsigned char*>(std::malloc(bytes));
     if (!out->osmesa_buffer ||
         !OSMesaMakeCurrent(context, out->osmesa_buffer, GL_UNSIGNED_BYTE, config.width,
                            config.height)) {
-        *error = "OSMesaMakeCurrent failed";
+        const ContextStatus st = failed("OSMesaMakeCurrent failed");
         OSMesaDestroyContext(context);
         std::free(out->osmesa_buffer);
         out->osmesa_buffer = nullptr;
-        return false;
+        return st;
     }
     out->osmesa_context = context;
-    return true;
+    return {};
 #else
     (void)config;
     (void)out;
-    *error = "built without OSMesa";
-    return false;
+    return failed("built without OSMesa");
 #endif
 }
 
 }  // namespace
 
-bool create_headless_context(const HeadlessConfig& config, HeadlessContext* out,
-                             std::string* error) {
+ContextStatus create_headless_context(const HeadlessConfig& config, HeadlessContext* out) {
     *out = HeadlessContext();
-    std::string tried;
-    std::string why;
+    if (!config.allow_egl && !config.allow_osmesa)
+        return {ContextError::no_backend_allowed, "no headless backend allowed (EGL and OSMesa off)"};
+    std::string tried;  // why each backend failed
     if (config.allow_egl) {
-        if (try_egl_surfaceless(out, &why)) {
+        ContextStatus st = try_egl_surfaceless(out);
+        if (st.ok()) {
             out->backend = Backend::egl_surfaceless;
         } else {
-            tried += "EGL surfaceless: " + why + "; ";
-            why.clear();
-            if (try_egl_device(out, &why))
+            tried += "EGL surfaceless: " + st.message + "; ";
+            st = try_egl_device(out);
+            if (st.ok())
                 out->backend = Backend::egl_device;
             else
-                tried += "EGL device: " + why + "; ";
+                tried += "EGL device: " + st.message + "; ";
         }
     }
     if (out->backend == Backend::none && config.allow_osmesa) {
-        why.clear();
-        if (try_osmesa(config, out, &why))
+        const ContextStatus st = try_osmesa(config, out);
+        if (st.ok())
             out->backend = Backend::osmesa;
         else
-            tried += "OSMesa: " + why + "; ";
+            tried += "OSMesa: " + st.message + "; ";
     }
-    if (out->backend == Backend::none) {
-        *error = "no headless OpenGL context could be created (" +
-                 tried.substr(0, tried.size() - 2) + ")";
-        return false;
-    }
+    if (out->backend == Backend::none)
+        return {ContextError::no_context, "no headless OpenGL context could be created (" +
+                                              tried.substr(0, tried.size() - 2) + ")"};
     auto get_string =
         reinterpret_cast<PFNGLGETSTRINGPROC>(proc_loader(*out)("glGetString"));
     const char* renderer = get_string ? reinterpret_cast<const char*>(get_string(GL_RENDERER)) : nullptr;
     const char* version = get_string ? reinterpret_cast<const char*>(get_string(GL_VERSION)) : nullptr;
     out->renderer = renderer ? renderer : "?";
     out->version = version ? version : "?";
-    return true;
+    return {};
 }
 
 ProcLoader proc_loader(const HeadlessContext& context) {

@@ -8,6 +8,19 @@ namespace stipple::platform {
 
 enum class Backend { none, egl_surfaceless, egl_device, osmesa };
 
+// The platform layer's one error type.
+enum class ContextError {
+    ok = 0,
+    no_backend_allowed,  // HeadlessConfig allows neither EGL nor OSMesa
+    no_context,          // every allowed backend was tried and none gave a context
+};
+
+struct ContextStatus {
+    ContextError code = ContextError::ok;
+    std::string message;  // one line; for no_context, why each backend failed
+    bool ok() const { return code == ContextError::ok; }
+};
+
 struct HeadlessConfig {
     int width = 640;            // OSMesa needs a buffer; EGL renders to the caller's FBO
     int height = 480;
@@ -25,10 +38,10 @@ struct HeadlessContext {
     std::string version;        // GL_VERSION
 };
 
-// Creates a context and makes it current on this thread. On failure returns false and
-// explains every backend that was tried.
-bool create_headless_context(const HeadlessConfig& config, HeadlessContext* out,
-                             std::string* error);
+// Creates a context and makes it current on this thread. On failure the message explains
+// every backend that was tried.
+[[nodiscard]] ContextStatus create_headless_context(const HeadlessConfig& config,
+                                                    HeadlessContext* out);
 
 // The context's get-proc-address, for stipple::load_gl_api.
 using ProcLoader = void* (*)(const char* name);

@@ -8,28 +8,9 @@
 #include <memory>
 
 #include "anim/anim.h"
+#include "runtime/status.h"
 
 namespace stipple {
-
-enum class LoadError {
-    ok = 0,
-    io_error,             // file missing or unreadable
-    bad_magic,            // not a .stip file
-    unsupported_version,  // written by a newer or older format
-    wrong_endianness,
-    truncated,          // file shorter than its header or a section says
-    checksum_mismatch,  // a section's bytes do not match its CRC
-    missing_section,
-    malformed_section,  // sizes inside a section disagree
-    out_of_range,       // an index points outside its array
-    bad_value,          // NaN, infinity, or a value outside its domain
-};
-
-struct LoadStatus {
-    LoadError error = LoadError::ok;
-    char message[200] = {};  // one line naming the problem, e.g. "PNTS: host triangle 9 >= 8"
-    bool ok() const { return error == LoadError::ok; }
-};
 
 // Runtime mesh: positions and normals in bind space (animated) or world space (static).
 struct MeshView {
@@ -126,17 +107,16 @@ struct Asset {
     std::unique_ptr<uint8_t[]> side_storage;  // triangle flags, then edge flags
 };
 
-// Reads and validates a whole asset. On failure `out` is left empty.
-LoadStatus load_asset_file(const char* path, Asset* out);
+// Reads and validates a whole asset. On failure `out` is left empty and the Status says
+// which check failed (Status::error); out-of-memory is StatusCode::out_of_memory.
+[[nodiscard]] Status load_asset_file(const char* path, Asset* out);
 // Validates `size` bytes already in memory; copies them into out->storage.
-LoadStatus load_asset_memory(const void* data, size_t size, Asset* out);
+[[nodiscard]] Status load_asset_memory(const void* data, size_t size, Asset* out);
 
 // Section name of a kSection* index ("MESH", ..., "SIDE").
 const char* section_name(int section);
 
 // Index of the clip named `name`, or of clip number `name` if it is all digits; -1 if none.
 int find_clip(const Asset& asset, const char* name);
-
-const char* load_error_name(LoadError error);
 
 }  // namespace stipple

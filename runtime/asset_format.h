@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "runtime/crc32.h"
+
 namespace stipple::format {
 
 constexpr char kMagic[4] = {'S', 'T', 'I', 'P'};
@@ -95,7 +97,6 @@ constexpr uint32_t kUpZ = 2;  // the input was Z-up: rotated at bake so +Z becam
 // SIDE section (version 3): u32 run_count, then run_count (first triangle, triangle count)
 // pairs, ascending and non-overlapping: the double-sided triangles of the MESH section.
 
-// CRC-32 (ISO-HDLC / zlib polynomial), used for section checksums.
-uint32_t crc32(const void* data, size_t size, uint32_t crc = 0);
+// Section checksums: crc32() of runtime/crc32.h.
 
 }  // namespace stipple::format

@@ -1,4 +1,4 @@
-#include "runtime/asset_format.h"
+#include "runtime/crc32.h"
 
 namespace stipple::format {
 

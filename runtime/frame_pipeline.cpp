@@ -1,6 +1,7 @@
 #include "runtime/frame_pipeline.h"
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -31,6 +32,15 @@ bool alloc(std::unique_ptr<T[]>* out, size_t count) {
     return bool(*out);
 }
 
+// The jobs of a frame run on spans pipeline_init sized from the asset's counts, and the asset
+// passed load validation, so a job that fails its own validation is a bug in the pipeline,
+// not bad input. Debug builds stop on it; release builds skip that stage (its output keeps
+// the previous frame's values) instead of failing a frame that has no way to report it.
+void expect_ran(bool ran) {
+    assert(ran && "a frame stage's job failed validation");
+    (void)ran;
+}
+
 // Samples clip `clip` at `time` into pose slot `slot` (locals and morph weights), with that
 // slot's sampling context so forward playback only touches the keys it needs.
 void sample_pose(Pipeline* p, int slot, int clip, float time) {
@@ -40,7 +50,7 @@ void sample_pose(Pipeline* p, int slot, int clip, float time) {
     anim::Span<float> weights(p->morph_weights[slot].get(), slots);
     anim::Span<const float> defaults(a.morph.default_weights, a.morph.default_weights ? slots : 0);
     if (clip < 0 || uint32_t(clip) >= a.clip_count) {
-        anim::rest_pose(k, p->locals[slot].get());
+        std::copy(k.rest, k.rest + k.node_count, p->locals[slot].get());
         for (uint32_t i = 0; i < slots; ++i) weights[i] = defaults.size ? defaults[i] : 0.0f;
         return;
     }
@@ -53,7 +63,7 @@ void sample_pose(Pipeline* p, int slot, int clip, float time) {
     job.locals = anim::Span<anim::Trs>(p->locals[slot].get(), k.node_count);
     job.morph_weights = weights;
     job.default_morph_weights = defaults;
-    job.run();
+    expect_ran(job.run());
 }
 
 // Samples (and blends) the pose, then morphs and skins the mesh into
@@ -85,14 +95,22 @@ void pose_mesh(Pipeline* p, const AnimationState& state, StageTimes* t, Clock::t
         blend.out_morph_weights = anim::Span<float>(p->morph_weights[2].get(), slots);
         if (blend.run()) pose = 2;
     }
-    anim::local_to_model(k, p->locals[pose].get(), p->models.get());
-    anim::joint_matrices(k, p->models.get(), p->skin_matrices.get());
+    anim::LocalToModelJob hierarchy;
+    hierarchy.skeleton = &k;
+    hierarchy.locals = {p->locals[pose].get(), k.node_count};
+    hierarchy.models = {p->models.get(), k.node_count};
+    expect_ran(hierarchy.run());
+    anim::JointMatrixJob joints;
+    joints.skeleton = &k;
+    joints.models = {p->models.get(), k.node_count};
+    joints.joint_matrices = {p->skin_matrices.get(), k.joint_count};
+    expect_ran(joints.run());
     anim::SkinningJob skin;
     skin.method = p->config.skinning;
     if (skin.method == anim::Skinning::dqs) {
         uint32_t stretched = 0;
-        anim::dqs_joints({p->skin_matrices.get(), k.joint_count},
-                         {p->dq_joints.get(), k.joint_count}, &stretched);
+        expect_ran(anim::dqs_joints({p->skin_matrices.get(), k.joint_count},
+                                    {p->dq_joints.get(), k.joint_count}, &stretched));
         skin.dq_joints = {p->dq_joints.get(), k.joint_count};
         skin.dq_rigid = stretched == 0;
     }
@@ -124,7 +142,7 @@ void pose_mesh(Pipeline* p, const AnimationState& state, StageTimes* t, Clock::t
     skin.in_normals = in_normals;
     skin.out_positions = out_positions;
     skin.out_normals = out_normals;
-    skin.run();
+    expect_ran(skin.run());
     if (t) t->skin += ms_since(clock);
 }
 
@@ -133,7 +151,7 @@ void pose_mesh(Pipeline* p, const AnimationState& state, StageTimes* t, Clock::t
 // narrows the field of view so that zoom 2 is exactly twice as large on screen.
 void setup_camera(Pipeline* p) {
     const Asset& a = *p->asset;
-    const PipelineConfig& c = p->config;
+    const FrameConfig& c = p->config;
     glm::vec3 lo(1e30f), hi(-1e30f);
     for (int clip : {c.frame_clip, c.frame_blend_clip}) {
         if (!a.bounds.present || clip < 0 || uint32_t(clip) >= a.clip_count) continue;
@@ -158,8 +176,8 @@ void setup_camera(Pipeline* p) {
     const float half_fov = glm::radians(c.fov_degrees) * 0.5f;
     const float half_fov_min = aspect < 1.0f ? std::atan(std::tan(half_fov) * aspect) : half_fov;
     const float distance = radius / std::sin(half_fov_min);
-    const float pitch_degrees = std::min(std::max(c.pitch_degrees, -90.0f), 90.0f);
-    const float yaw = glm::radians(c.yaw_degrees), pitch = glm::radians(pitch_degrees);
+    // resolve_frame_config keeps the pitch in [-90, 90].
+    const float yaw = glm::radians(c.yaw_degrees), pitch = glm::radians(c.pitch_degrees);
     const glm::vec3 dir(std::sin(yaw) * std::cos(pitch), std::sin(pitch),
                         std::cos(yaw) * std::cos(pitch));
     // Screen up = d(dir)/d(pitch): perpendicular to the view direction at every pitch, +Y at
@@ -202,18 +220,17 @@ constexpr uint32_t kMinTriangulatedPoints = 256;
 
 // Chooses the refinement's domain and builds its tables; p->point_positions/normals hold the
 // baked points in the bind pose.
-bool refinement_setup(Pipeline* p, char* error, size_t error_size) {
+Status refinement_setup(Pipeline* p) {
     const Asset& asset = *p->asset;
     const uint32_t n = asset.points.point_count;
     p->refinement_domain = asset.mesh;
     p->refine_on_points = false;
     if (n >= kMinTriangulatedPoints) {
         const double area = surface_area(asset.mesh);
-        if (!triangulate_points(n, p->point_positions.get(), p->point_normals.get(), area,
-                                &asset.mesh, asset.points.host_triangle, &p->point_triangles)) {
-            std::snprintf(error, error_size, "out of memory triangulating %u points", n);
-            return false;
-        }
+        Status st =
+            triangulate_points(n, p->point_positions.get(), p->point_normals.get(), area,
+                               &asset.mesh, asset.points.host_triangle, &p->point_triangles);
+        if (!st.ok()) return st;
         // A sparse or torn result (scattered points) falls back to the render mesh.
         if (p->point_triangles.triangle_count >= n) {
             MeshView& d = p->refinement_domain;
@@ -225,48 +242,41 @@ bool refinement_setup(Pipeline* p, char* error, size_t error_size) {
             p->refine_on_points = true;
         }
     }
-    if (!refinement_init(&p->refinement, p->refinement_domain, asset.points, p->point_positions.get(),
-                         p->refine_on_points ? RefinementDomain::points : RefinementDomain::mesh)) {
-        std::snprintf(error, error_size, "out of memory for the run-time refinement of %u triangles",
-                      p->refinement_domain.triangle_count);
-        return false;
-    }
-    return true;
+    return refinement_init(&p->refinement, p->refinement_domain, asset.points,
+                           p->point_positions.get(),
+                           p->refine_on_points ? RefinementDomain::points : RefinementDomain::mesh);
 }
 
-}  // namespace
-
-bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const PipelineConfig& config,
-                   char* error, size_t error_size) {
-    *p = Pipeline();
-    p->asset = &asset;
-    p->config = config;
+// The pose buffers: three local poses and morph weight sets, two sampling contexts.
+Status alloc_pose_buffers(Pipeline* p) {
+    const Asset& asset = *p->asset;
     const uint32_t nodes = asset.skinned ? asset.skin.skeleton.node_count : 0;
-    const uint32_t joints = asset.skinned ? asset.skin.skeleton.joint_count : 0;
     uint32_t max_channels = 0;
     for (uint32_t c = 0; c < asset.clip_count; ++c)
         max_channels = std::max(max_channels, asset.clips[c].channel_count);
     for (int slot = 0; slot < 3; ++slot)
         if (!alloc(&p->locals[slot], nodes) ||
-            !alloc(&p->morph_weights[slot], asset.morph.weight_count)) {
-            std::snprintf(error, error_size, "out of memory for %u nodes", nodes);
-            return false;
-        }
+            !alloc(&p->morph_weights[slot], asset.morph.weight_count))
+            return make_status(StatusCode::out_of_memory, "out of memory for %u nodes", nodes);
     for (int slot = 0; slot < 2; ++slot) {
-        if (!alloc(&p->cursors[slot], max_channels)) {
-            std::snprintf(error, error_size, "out of memory for sampling cursors");
-            return false;
-        }
+        if (!alloc(&p->cursors[slot], max_channels))
+            return make_status(StatusCode::out_of_memory, "out of memory for sampling cursors");
         p->contexts[slot].cursors = anim::Span<uint32_t>(p->cursors[slot].get(), max_channels);
     }
+    return {};
+}
+
+// The mesh, point and line buffers, sized for the baked points plus the refinement budget.
+Status alloc_frame_buffers(Pipeline* p) {
+    const Asset& asset = *p->asset;
+    const uint32_t nodes = asset.skinned ? asset.skin.skeleton.node_count : 0;
+    const uint32_t joints = asset.skinned ? asset.skin.skeleton.joint_count : 0;
     const size_t verts = asset.mesh.vertex_count, points = asset.points.point_count;
-    const uint32_t budget = config.refinement_budget;
+    const uint32_t budget = p->config.refinement_budget;
     const size_t capacity = points + budget;
-    if (capacity > 0x7FFFFFFFu) {
-        std::snprintf(error, error_size, "%zu points + refinement budget %u is too many", points,
-                      budget);
-        return false;
-    }
+    if (capacity > 0x7FFFFFFFu)
+        return make_status(StatusCode::invalid_argument,
+                           "%zu points + refinement budget %u is too many", points, budget);
     p->point_capacity = uint32_t(capacity);
     if (!alloc(&p->dq_joints, joints) || !alloc(&p->models, nodes) ||
         !alloc(&p->skin_matrices, joints) || !alloc(&p->vertex_positions, verts * 3) ||
@@ -277,27 +287,31 @@ bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const Pipel
         !alloc(&p->draw_sizes, capacity) || !alloc(&p->refined_triangle, budget) ||
         !alloc(&p->refined_index, budget) ||
         !alloc(&p->triangle_front, asset.mesh.triangle_count) ||
-        !alloc(&p->lines, size_t(asset.edges.edge_count) * 6)) {
-        std::snprintf(error, error_size, "out of memory for %zu points", capacity);
-        return false;
-    }
+        !alloc(&p->lines, size_t(asset.edges.edge_count) * 6))
+        return make_status(StatusCode::out_of_memory, "out of memory for %zu points", capacity);
     if (asset.sides.triangle_double_sided) {  // runtime/double_sided.h: per-point flags, once
-        if (!alloc(&p->point_double_sided, points)) {
-            std::snprintf(error, error_size, "out of memory for %zu points", points);
-            return false;
-        }
+        if (!alloc(&p->point_double_sided, points))
+            return make_status(StatusCode::out_of_memory, "out of memory for %zu points", points);
         if (!double_sided_point_flags(asset.points.point_count, asset.points.host_triangle,
                                       asset.sides.triangle_double_sided,
                                       p->point_double_sided.get()))
             p->point_double_sided.reset();  // no point lies on a double-sided triangle
     }
-    // Bind pose (the bake's space): how each baked radius relates to its neighbour distances.
+    return {};
+}
+
+// Bind pose (the bake's space): how each baked radius relates to its neighbour distances,
+// and the refinement's tables. Then the rest pose: camera bounds, and the radii used when
+// relevance updates are off (the baked radii expressed in the same space as the posed mesh).
+Status place_rest_pose(Pipeline* p) {
+    const Asset& asset = *p->asset;
     place_points(asset.points, asset.mesh.indices, asset.mesh.positions, asset.mesh.normals,
                  p->point_positions.get(), p->point_normals.get());
     relevance_scale(asset.points, p->point_positions.get(), p->radius_scale.get());
-    if (budget > 0 && !refinement_setup(p, error, error_size)) return false;
-    // Rest pose: camera bounds, and the radii used when relevance updates are off (the baked
-    // radii expressed in the same space as the posed mesh).
+    if (p->config.refinement_budget > 0) {
+        Status st = refinement_setup(p);
+        if (!st.ok()) return st;
+    }
     Clock::time_point clock = Clock::now();
     pose_mesh(p, AnimationState(), nullptr, &clock);
     place_points(asset.points, asset.mesh.indices, p->vertex_positions.get(),
@@ -305,23 +319,42 @@ bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const Pipel
     recompute_relevance(asset.points, p->point_positions.get(), p->radius_scale.get(),
                         asset.points.radius, p->rest_radius.get());
     setup_camera(p);
+    return {};
+}
 
+// The renderer's settings: the resolved frame settings and the asset's buffer sizes.
+RendererConfig renderer_config(const Pipeline& p) {
+    const Asset& asset = *p.asset;
+    const FrameConfig& c = p.config;
     RendererConfig rc;
-    rc.width = config.width;
-    rc.height = config.height;
-    rc.max_points = p->point_capacity;
+    rc.width = c.width;
+    rc.height = c.height;
+    rc.max_points = p.point_capacity;
     rc.vertex_count = asset.mesh.vertex_count;
     rc.max_lines = asset.edges.edge_count;
-    rc.line_width = config.line_width;
-    rc.depth_copy = config.depth_readback;
+    rc.line_width = c.line_width;
+    rc.depth_copy = c.depth_readback;
     rc.indices = asset.mesh.indices;
     rc.triangle_count = asset.mesh.triangle_count;
-    std::memcpy(rc.background, config.background, sizeof(rc.background));
-    if (!renderer_init(&p->renderer, gl, rc, error, error_size)) return false;
+    std::memcpy(rc.background, c.background, sizeof(rc.background));
+    return rc;
+}
+
+}  // namespace
+
+Status pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const FrameConfig& config) {
+    *p = Pipeline();
+    p->asset = &asset;
+    Status st = resolve_frame_config(config, &p->config);
+    if (st.ok()) st = alloc_pose_buffers(p);
+    if (st.ok()) st = alloc_frame_buffers(p);
+    if (st.ok()) st = place_rest_pose(p);
+    if (st.ok()) st = renderer_init(&p->renderer, gl, renderer_config(*p));
+    if (!st.ok()) return st;
     // Draw the rest pose once now: llvmpipe compiles shaders on first use (15-25 ms), which
     // belongs to load time, not to the first frame.
     pipeline_frame(p, AnimationState(), nullptr);
-    return true;
+    return {};
 }
 
 void pipeline_frame(Pipeline* p, int clip, float time, StageTimes* t) {
@@ -368,9 +401,9 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
             refine_points(&p->refinement, domain, domain.positions, domain.normals, nullptr,
                           p->size_params, p->config.relevance_update, &extra, &p->refinement_stats);
         } else {
-            refine_points(&p->refinement, a.mesh, p->vertex_positions.get(), p->vertex_normals.get(),
-                          a.sides.triangle_double_sided, p->size_params, p->config.relevance_update,
-                          &extra, &p->refinement_stats);
+            refine_points(&p->refinement, a.mesh, p->vertex_positions.get(),
+                          p->vertex_normals.get(), a.sides.triangle_double_sided, p->size_params,
+                          p->config.relevance_update, &extra, &p->refinement_stats);
         }
         p->refined_count = extra.count;
         if (t) t->refine += ms_since(&clock);
@@ -419,8 +452,11 @@ uint64_t pipeline_point_id(const Pipeline& p, uint32_t i) {
     return (uint64_t(p.refined_triangle[j]) + 1) << 32 | p.refined_index[j];
 }
 
-void pipeline_set_view(Pipeline* p, const PipelineConfig& view) {
-    PipelineConfig& c = p->config;
+Status pipeline_set_view(Pipeline* p, const FrameConfig& in) {
+    FrameConfig view;
+    Status st = resolve_frame_config(in, &view);
+    if (!st.ok()) return st;
+    FrameConfig& c = p->config;
     c.zoom = view.zoom;
     c.yaw_degrees = view.yaw_degrees;
     c.pitch_degrees = view.pitch_degrees;
@@ -431,6 +467,7 @@ void pipeline_set_view(Pipeline* p, const PipelineConfig& view) {
     c.smooth_slope = view.smooth_slope;
     c.relevance_update = view.relevance_update;
     setup_camera(p);
+    return {};
 }
 
 glm::vec3 pipeline_project(const Pipeline& p, uint32_t i) {

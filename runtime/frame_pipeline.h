@@ -10,38 +10,13 @@
 #include <memory>
 
 #include "runtime/asset.h"
+#include "runtime/frame_config.h"
 #include "runtime/point_refinement.h"
 #include "runtime/point_triangulation.h"
 #include "runtime/renderer.h"
 #include "runtime/stipple_size.h"
 
 namespace stipple {
-
-struct PipelineConfig {
-    int width = 640;
-    int height = 480;
-    float zoom = 1.0f;             // 1: the framed bounds fit the view; 2: twice as large
-    float yaw_degrees = 0.0f;      // camera orbit around the vertical axis
-    float pitch_degrees = 0.0f;    // camera elevation, [-90, 90] (90: looking straight down)
-    // What zoom 1 frames: the union of the baked bounds (BNDS) of these clips, so an animated
-    // character stays in the picture; both -1 (or an asset without BNDS): the rest pose.
-    int frame_clip = -1;
-    int frame_blend_clip = -1;
-    float fov_degrees = 30.0f;     // vertical field of view at zoom 1
-    bool relevance_update = true;  // Alg. 6.4; false keeps rest-pose radii (Alg. 6.3 only)
-    float constant_tone = -1.0f;   // in [0,1] to replace lighting
-    float max_point_size = 3.0f;
-    float smooth_slope = 2.0f;
-    float background[3] = {1.0f, 1.0f, 1.0f};
-    anim::Skinning skinning = anim::Skinning::lbs;  // or dual quaternions (no candy wrapper)
-    bool silhouettes = true;      // draw silhouette lines (needs the asset's EDGE section)
-    float line_width = 1.0f;      // silhouette width in pixels
-    bool depth_readback = false;  // keep the mesh depth for renderer_read_depth (dot lists)
-    // Run-time refinement (runtime/point_refinement.h): extra points generated per frame where
-    // the baked hierarchy runs out (close-ups, stretch). 0 turns it off.
-    uint32_t refinement_budget = 1u << 18;
-    float dark_tone = 0.6f;  // darkest tone lighting asks for (thesis §8.4), in [0, 1]
-};
 
 // What pose to draw: one clip, optionally blended with a second (walk -> run crossfades are
 // a second clip whose weight ramps from 0 to 1).
@@ -61,7 +36,7 @@ struct StageTimes {  // milliseconds
 
 struct Pipeline {
     const Asset* asset = nullptr;
-    PipelineConfig config;
+    FrameConfig config;  // resolved (runtime/frame_config.h)
     glm::mat4 view_projection = glm::mat4(1.0f);
     SizeParams size_params;
     Renderer renderer;
@@ -100,8 +75,11 @@ struct Pipeline {
     uint32_t lines_drawn = 0;                             // silhouette lines
 };
 
-bool pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const PipelineConfig& config,
-                   char* error, size_t error_size);
+// Resolves `config` (resolve_frame_config: defaults, limits), takes every buffer a frame needs
+// and creates the renderer. Fails with invalid_argument (a setting out of range),
+// out_of_memory or gl_error.
+[[nodiscard]] Status pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl,
+                                   const FrameConfig& config);
 
 // Poses the mesh as `state` says, then runs every CPU stage and draws. Stage times are added
 // to `times` if it is not null.
@@ -112,9 +90,10 @@ void pipeline_frame(Pipeline* p, int clip, float time, StageTimes* times);
 
 // Changes what needs no new memory between frames: the orbit camera (zoom, yaw, pitch,
 // fov_degrees) and the tone settings (constant_tone, dark_tone, max_point_size,
-// smooth_slope, relevance_update). The other fields of `view` are ignored. For zoom sweeps and
-// frame checks that try many views on one loaded pipeline.
-void pipeline_set_view(Pipeline* p, const PipelineConfig& view);
+// smooth_slope, relevance_update). The other fields of `view` are ignored. `view` is resolved
+// like pipeline_init's config; on invalid_argument the pipeline keeps its view. For zoom
+// sweeps and frame checks that try many views on one loaded pipeline.
+[[nodiscard]] Status pipeline_set_view(Pipeline* p, const FrameConfig& view);
 
 // Points of the last frame: baked ones, then the run-time refinement's.
 inline uint32_t pipeline_point_count(const Pipeline& p) {

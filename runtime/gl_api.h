@@ -4,6 +4,8 @@
 #pragma once
 #include <GLES3/gl3.h>
 
+#include "runtime/status.h"
+
 namespace stipple {
 
 #define STIPPLE_GL_FUNCTIONS(X)                                                              \
@@ -82,7 +84,7 @@ struct GlApi {
 
 using GetProcAddress = void* (*)(const char* name);
 
-// Fills every entry; returns the name of the first missing function, or nullptr.
-const char* load_gl_api(GetProcAddress get_proc, GlApi* gl);
+// Fills every entry. Fails with gl_error naming the first missing function.
+[[nodiscard]] Status load_gl_api(GetProcAddress get_proc, GlApi* gl);
 
 }  // namespace stipple

@@ -170,8 +170,8 @@ void refine_triangle(Traversal* s, uint32_t t) {
 
 }  // namespace
 
-bool refinement_init(RefinementMesh* r, const MeshView& mesh, const PointsView& points,
-                     const float* bind_point_positions, RefinementDomain domain) {
+Status refinement_init(RefinementMesh* r, const MeshView& mesh, const PointsView& points,
+                       const float* bind_point_positions, RefinementDomain domain) {
     *r = RefinementMesh();
     const uint32_t n = mesh.triangle_count;
     r->triangle_count = n;
@@ -180,7 +180,8 @@ bool refinement_init(RefinementMesh* r, const MeshView& mesh, const PointsView& 
     if (!longest || !first || !alloc(&r->bind_area, n) || !alloc(&r->frame, size_t(n) * 3) ||
         !alloc(&r->root_depth, n) || !alloc(&r->density, n) || !alloc(&r->phase, n) ||
         !alloc(&r->fade, n) || !alloc(&r->vertex, mesh.vertex_count))
-        return false;
+        return make_status(StatusCode::out_of_memory,
+                           "out of memory for the run-time refinement of %u triangles", n);
     // Bind-pose area and isometric frame (A at the origin, B on the x axis) per triangle.
     double total_area = 0.0;
     for (uint32_t t = 0; t < n; ++t) {
@@ -239,10 +240,12 @@ bool refinement_init(RefinementMesh* r, const MeshView& mesh, const PointsView& 
     }
     if (!first_point_phases(n, first.get(), r->bind_area.get(), points.point_count,
                             bind_point_positions, r->phase.get()))
-        return false;
-    return true;
+        return make_status(StatusCode::out_of_memory,
+                           "out of memory for the run-time refinement of %u triangles", n);
+    return {};
 }
 
+namespace {
 
 // Clip-space w where a point lies on the near plane: clip z is affine in w along every
 // view ray (z = alpha w + beta, beta = z at the eye where w = 0), and the near plane is z = -w.
@@ -260,16 +263,12 @@ float near_plane_w(const SizeParams& params) {
     return std::isfinite(near_w) && near_w > 1e-6f ? near_w : 1e-6f;
 }
 
-void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positions,
-                   const float* normals, const uint8_t* double_sided, const SizeParams& params,
-                   bool stretch, RefinedPoints* out, RefinementStats* stats) {
-    out->count = 0;
+// Per posed vertex: clip position, which frustum planes it lies outside, and the ink the
+// size rule needs there for each side (N.V times the ink of its lighting).
+void classify_vertices(RefinementMesh* r, const MeshView& mesh, const float* positions,
+                       const float* normals, const SizeParams& params) {
     const glm::mat4& m = params.view_projection;
     const InkTable ink(params);
-    const float focal = focal_pixels(params);
-    const float dot_area = 0.785398163f * params.max_point_size * params.max_point_size;
-    const float focal2_over_dot = focal * focal / dot_area;
-    const float near_w = near_plane_w(params);
     for (uint32_t i = 0; i < mesh.vertex_count; ++i) {
         const glm::vec3 p(positions[i * 3], positions[i * 3 + 1], positions[i * 3 + 2]);
         const glm::vec3 n(normals[i * 3], normals[i * 3 + 1], normals[i * 3 + 2]);
@@ -278,12 +277,75 @@ void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positio
         const float n_dot_v = len > 0.0f ? glm::dot(n, to_eye) / len : 0.0f;
         const glm::vec4 c = m * glm::vec4(p, 1.0f);
         r->vertex[i].clip = c;
-        r->vertex[i].outside = uint32_t(c.x < -c.w) | uint32_t(c.x > c.w) << 1 | uint32_t(c.y < -c.w) << 2 |
-                               uint32_t(c.y > c.w) << 3 | uint32_t(c.z < -c.w) << 4 | uint32_t(c.z > c.w) << 5;
+        r->vertex[i].outside = uint32_t(c.x < -c.w) | uint32_t(c.x > c.w) << 1 |
+                               uint32_t(c.y < -c.w) << 2 | uint32_t(c.y > c.w) << 3 |
+                               uint32_t(c.z < -c.w) << 4 | uint32_t(c.z > c.w) << 5;
         const float lit = glm::dot(n, params.light_direction);
         r->vertex[i].need = n_dot_v > 0.0f ? n_dot_v * ink.at(lit) : 0.0f;
         r->vertex[i].need_back = n_dot_v < 0.0f ? -n_dot_v * ink.at(-lit) : 0.0f;
     }
+}
+
+// Triangle t for one pass: skips it when the wanted density stays under what the bake already
+// draws there, else sets its fade (hand-over) and generates its extra points.
+void refine_one_triangle(RefinementMesh* r, Traversal* s, bool stretch, uint32_t t) {
+    r->fade[t] = 1.0f;
+    // Early out, without a square root: nothing to do while stretch * density stays
+    // under both the first extra point's threshold and the hand-over's start.
+    const float area = r->bind_area[t];
+    if (!(area > 0.0f)) return;
+    const MeshView& mesh = *s->mesh;
+    const float* positions = s->positions;
+    const uint32_t* tri = mesh.indices + size_t(t) * 3;
+    const RefinementVertex& a = r->vertex[tri[0]];
+    const RefinementVertex& b = r->vertex[tri[1]];
+    const RefinementVertex& c = r->vertex[tri[2]];
+    if (a.outside & b.outside & c.outside) return;  // off one side of the view
+    const bool two_sided = s->double_sided && s->double_sided[t];
+    const float baked = r->density[t];
+    const float first = r->phase[t] / (area * s->scale);
+    const float lower =
+        r->hand_over ? std::min(baked + first, kHandOverStart * r->finest_density) : baked + first;
+    float need = std::max({a.need, b.need, c.need});
+    if (two_sided) need = std::max({need, a.need_back, b.need_back, c.need_back});
+    if (!(need > 0.0f)) return;
+    const float w = std::max(std::min({a.clip.w, b.clip.w, c.clip.w}), s->near_w);
+    const float density = need * s->focal2_over_dot / (w * w);
+    float stretched = density;
+    if (!stretch) {
+        if (density < lower) return;
+        s->stretch = 1.0f;
+    } else {
+        const glm::vec3 pa = glm::make_vec3(positions + size_t(tri[0]) * 3);
+        const glm::vec3 e1 = glm::make_vec3(positions + size_t(tri[1]) * 3) - pa;
+        const glm::vec3 e2 = glm::make_vec3(positions + size_t(tri[2]) * 3) - pa;
+        const glm::vec3 n = glm::cross(e1, e2);
+        const float twice2 = glm::dot(n, n);  // (2 * current area)^2
+        if (density * density * twice2 < 4.0f * area * area * lower * lower) return;
+        s->stretch = 0.5f * std::sqrt(twice2) / area;
+        stretched = s->stretch * density;
+    }
+    // Hand-over: the baked points here fade (ink x (1 - h)) and the sequence takes
+    // their share of the density, so deep close-ups are one even set of points. h
+    // follows the wanted density over the bake's mean density, smooth over the
+    // surface, so a baked point and the extra points around it agree on it.
+    const float mean = r->finest_density;
+    const float h = r->hand_over ? hand_over(mean > 0.0f ? stretched / mean : 1e30f) : 0.0f;
+    r->fade[t] = std::sqrt(1.0f - h);
+    s->density = (1.0f - h) * baked;
+    if (stretched < s->density + first) return;
+    refine_triangle(s, t);
+}
+
+}  // namespace
+
+void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positions,
+                   const float* normals, const uint8_t* double_sided, const SizeParams& params,
+                   bool stretch, RefinedPoints* out, RefinementStats* stats) {
+    out->count = 0;
+    classify_vertices(r, mesh, positions, normals, params);
+    const float focal = focal_pixels(params);
+    const float dot_area = 0.785398163f * params.max_point_size * params.max_point_size;
     Traversal s;
     s.r = r;
     s.mesh = &mesh;
@@ -292,8 +354,8 @@ void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positio
     s.vertex = r->vertex.get();
     s.double_sided = double_sided;
     s.eye = params.eye;
-    s.near_w = near_w;
-    s.focal2_over_dot = focal2_over_dot;
+    s.near_w = near_plane_w(params);
+    s.focal2_over_dot = focal * focal / dot_area;
     s.out = out;
     // Once with every count whole; if the budget binds, again with every count scaled so the
     // frame fits (each triangle keeps its coarsest extra points).
@@ -306,52 +368,7 @@ void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positio
         }
         if (stats && pass == 0) stats->wanted = 0;
         s.wanted = 0;
-        for (uint32_t t = 0; t < r->triangle_count; ++t) {
-            r->fade[t] = 1.0f;
-            // Early out, without a square root: nothing to do while stretch * density stays
-            // under both the first extra point's threshold and the hand-over's start.
-            const float area = r->bind_area[t];
-            if (!(area > 0.0f)) continue;
-            const uint32_t* tri = mesh.indices + size_t(t) * 3;
-            const RefinementVertex& a = r->vertex[tri[0]];
-            const RefinementVertex& b = r->vertex[tri[1]];
-            const RefinementVertex& c = r->vertex[tri[2]];
-            if (a.outside & b.outside & c.outside) continue;  // off one side of the view
-            const bool two_sided = double_sided && double_sided[t];
-            const float baked = r->density[t];
-            const float first = r->phase[t] / (area * s.scale);
-            const float lower = r->hand_over ? std::min(baked + first, kHandOverStart * r->finest_density)
-                                             : baked + first;
-            float need = std::max({a.need, b.need, c.need});
-            if (two_sided) need = std::max({need, a.need_back, b.need_back, c.need_back});
-            if (!(need > 0.0f)) continue;
-            const float w = std::max(std::min({a.clip.w, b.clip.w, c.clip.w}), s.near_w);
-            const float density = need * s.focal2_over_dot / (w * w);
-            float stretched = density;
-            if (!stretch) {
-                if (density < lower) continue;
-                s.stretch = 1.0f;
-            } else {
-                const glm::vec3 pa = glm::make_vec3(positions + size_t(tri[0]) * 3);
-                const glm::vec3 e1 = glm::make_vec3(positions + size_t(tri[1]) * 3) - pa;
-                const glm::vec3 e2 = glm::make_vec3(positions + size_t(tri[2]) * 3) - pa;
-                const glm::vec3 n = glm::cross(e1, e2);
-                const float twice2 = glm::dot(n, n);  // (2 * current area)^2
-                if (density * density * twice2 < 4.0f * area * area * lower * lower) continue;
-                s.stretch = 0.5f * std::sqrt(twice2) / area;
-                stretched = s.stretch * density;
-            }
-            // Hand-over: the baked points here fade (ink x (1 - h)) and the sequence takes
-            // their share of the density, so deep close-ups are one even set of points. h
-            // follows the wanted density over the bake's mean density, smooth over the
-            // surface, so a baked point and the extra points around it agree on it.
-            const float mean = r->finest_density;
-            const float h = r->hand_over ? hand_over(mean > 0.0f ? stretched / mean : 1e30f) : 0.0f;
-            r->fade[t] = std::sqrt(1.0f - h);
-            s.density = (1.0f - h) * baked;
-            if (stretched < s.density + first) continue;
-            refine_triangle(&s, t);
-        }
+        for (uint32_t t = 0; t < r->triangle_count; ++t) refine_one_triangle(r, &s, stretch, t);
         if (stats && pass == 0) stats->wanted = s.wanted;
     }
     if (stats) {
@@ -359,7 +376,6 @@ void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positio
         stats->budget_scale = s.scale;
     }
 }
-
 
 void fade_baked_points(const RefinementMesh& r, const PointsView& points, float* size) {
     if (!r.hand_over) return;  // the points domain continues the bake: no baked point fades

@@ -88,10 +88,11 @@ enum class RefinementDomain { mesh, points };
 
 // Builds the per-triangle tables of `mesh` (the domain's bind pose): finest_density = baked
 // points / bind surface area, per triangle the local baked density, root cells, first-point
-// phases (bind_point_positions: the baked points, 3 floats each).
-bool refinement_init(RefinementMesh* r, const MeshView& mesh, const PointsView& points,
-                     const float* bind_point_positions,
-                     RefinementDomain domain = RefinementDomain::mesh);
+// phases (bind_point_positions: the baked points, 3 floats each). Fails only with
+// out_of_memory.
+[[nodiscard]] Status refinement_init(RefinementMesh* r, const MeshView& mesh,
+                                     const PointsView& points, const float* bind_point_positions,
+                                     RefinementDomain domain = RefinementDomain::mesh);
 
 
 // Generates the frame's extra points: `positions`/`normals` are the posed mesh vertices

@@ -129,6 +129,10 @@ struct SurfaceReach {
     }
 };
 
+Status out_of_memory(uint32_t count) {
+    return make_status(StatusCode::out_of_memory, "out of memory triangulating %u points", count);
+}
+
 }  // namespace
 
 double surface_area(const MeshView& m) {
@@ -144,19 +148,19 @@ double surface_area(const MeshView& m) {
     return area;
 }
 
-bool triangulate_points(uint32_t count, const float* positions, const float* normals,
-                        double area, const MeshView* surface, const uint32_t* host_triangle,
-                        PointTriangulation* out) {
+Status triangulate_points(uint32_t count, const float* positions, const float* normals,
+                          double area, const MeshView* surface, const uint32_t* host_triangle,
+                          PointTriangulation* out) {
     *out = PointTriangulation();
-    if (count < 3 || !(area > 0.0)) return true;
+    if (count < 3 || !(area > 0.0)) return {};
     SurfaceReach along;
-    if (surface && host_triangle && !along.build(*surface)) return false;
+    if (surface && host_triangle && !along.build(*surface)) return out_of_memory(count);
     const float spacing = float(std::sqrt(area / double(count)));
     const float reach = 2.2f * spacing;
     SpatialGrid grid;
     const size_t capacity = size_t(count) * 3;
     std::unique_ptr<uint32_t[]> tris(new (std::nothrow) uint32_t[capacity * 3]);
-    if (!tris || !grid.build(positions, count, reach, nullptr)) return false;
+    if (!tris || !grid.build(positions, count, reach, nullptr)) return out_of_memory(count);
     uint32_t made = 0;
     Candidate candidates[kMaxCandidates];
     for (uint32_t i = 0; i < count && made < capacity; ++i) {
@@ -210,7 +214,7 @@ bool triangulate_points(uint32_t count, const float* positions, const float* nor
     }
     out->triangle_count = made;
     out->indices = std::move(tris);
-    return true;
+    return {};
 }
 
 }  // namespace stipple

@@ -37,9 +37,10 @@ struct PointTriangulation {
 // `positions`/`normals`: count points, 3 floats each (bind pose, unit normals); `area`: the
 // surface area they cover. With `surface` (the bind-pose mesh) and each point's host triangle
 // on it, points are joined only if they are within reach along the surface, not merely in
-// space. False only when memory runs out.
-bool triangulate_points(uint32_t count, const float* positions, const float* normals,
-                        double area, const MeshView* surface, const uint32_t* host_triangle,
-                        PointTriangulation* out);
+// space. Fails only with out_of_memory.
+[[nodiscard]] Status triangulate_points(uint32_t count, const float* positions,
+                                        const float* normals, double area,
+                                        const MeshView* surface, const uint32_t* host_triangle,
+                                        PointTriangulation* out);
 
 }  // namespace stipple

@@ -102,7 +102,7 @@ layout(location = 0) out vec4 o_color;
 void main() { o_color = vec4(u_ink.rgb, 1.0); }
 )";
 
-GLuint compile(const GlApi& gl, GLenum type, const char* source, char* error, size_t size) {
+GLuint compile(const GlApi& gl, GLenum type, const char* source, Status* error) {
     GLuint s = gl.CreateShader(type);
     gl.ShaderSource(s, 1, &source, nullptr);
     gl.CompileShader(s);
@@ -111,16 +111,17 @@ GLuint compile(const GlApi& gl, GLenum type, const char* source, char* error, si
     if (!ok) {
         char log[512] = {};
         gl.GetShaderInfoLog(s, sizeof(log), nullptr, log);
-        std::snprintf(error, size, "shader compile failed: %s", log);
+        *error = make_status(StatusCode::gl_error, "shader compile failed: %s", log);
         gl.DeleteShader(s);
         return 0;
     }
     return s;
 }
 
-GLuint link(const GlApi& gl, const char* vs, const char* fs, char* error, size_t size) {
-    GLuint v = compile(gl, GL_VERTEX_SHADER, vs, error, size);
-    GLuint f = v ? compile(gl, GL_FRAGMENT_SHADER, fs, error, size) : 0;
+// The program of two shaders, or 0 with *error set.
+GLuint link(const GlApi& gl, const char* vs, const char* fs, Status* error) {
+    GLuint v = compile(gl, GL_VERTEX_SHADER, vs, error);
+    GLuint f = v ? compile(gl, GL_FRAGMENT_SHADER, fs, error) : 0;
     if (!f) {
         if (v) gl.DeleteShader(v);
         return 0;
@@ -136,7 +137,7 @@ GLuint link(const GlApi& gl, const char* vs, const char* fs, char* error, size_t
     if (!ok) {
         char log[512] = {};
         gl.GetProgramInfoLog(p, sizeof(log), nullptr, log);
-        std::snprintf(error, size, "program link failed: %s", log);
+        *error = make_status(StatusCode::gl_error, "program link failed: %s", log);
         gl.DeleteProgram(p);
         return 0;
     }
@@ -177,20 +178,16 @@ void begin_ink_pass(Renderer* r, GLuint program, GLint vp, GLint ink,
     gl.Uniform4f(ink, r->config.ink[0], r->config.ink[1], r->config.ink[2], 1.0f);
 }
 
-}  // namespace
-
-bool renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config, char* error,
-                   size_t error_size) {
-    *r = Renderer();
-    r->gl = gl;
-    r->config = config;
-    const int w = config.width, h = config.height;
-
+// The offscreen framebuffer (colour, optional depth copy, depth texture) and the ink
+// framebuffer that shares its colour.
+Status create_framebuffers(Renderer* r) {
+    const GlApi& gl = r->gl;
+    const int w = r->config.width, h = r->config.height;
     gl.GenFramebuffers(1, &r->fbo);
     gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
     r->color_rb = renderbuffer(gl, GL_RGBA8, w, h);
     gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, r->color_rb);
-    if (config.depth_copy) {
+    if (r->config.depth_copy) {
         r->depth_copy_rb = renderbuffer(gl, GL_R32F, w, h);
         gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER,
                                    r->depth_copy_rb);
@@ -211,20 +208,20 @@ bool renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config, c
     gl.BindFramebuffer(GL_FRAMEBUFFER, r->ink_fbo);
     gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, r->color_rb);
     const GLenum ink_status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE || ink_status != GL_FRAMEBUFFER_COMPLETE) {
-        std::snprintf(error, error_size, "framebuffer %dx%d incomplete (status 0x%x, 0x%x)", w,
-                      h, status, ink_status);
-        renderer_destroy(r);
-        return false;
-    }
+    if (status != GL_FRAMEBUFFER_COMPLETE || ink_status != GL_FRAMEBUFFER_COMPLETE)
+        return make_status(StatusCode::gl_error, "framebuffer %dx%d incomplete (status 0x%x, 0x%x)",
+                           w, h, status, ink_status);
+    return {};
+}
 
-    r->mesh_program = link(gl, kMeshVs, kMeshFs, error, error_size);
-    r->point_program = r->mesh_program ? link(gl, kPointVs, kPointFs, error, error_size) : 0;
-    r->line_program = r->point_program ? link(gl, kLineVs, kLineFs, error, error_size) : 0;
-    if (!r->line_program) {
-        renderer_destroy(r);
-        return false;
-    }
+// The mesh, dots and lines programs and their uniform locations.
+Status create_programs(Renderer* r) {
+    const GlApi& gl = r->gl;
+    Status st;
+    r->mesh_program = link(gl, kMeshVs, kMeshFs, &st);
+    r->point_program = r->mesh_program ? link(gl, kPointVs, kPointFs, &st) : 0;
+    r->line_program = r->point_program ? link(gl, kLineVs, kLineFs, &st) : 0;
+    if (!r->line_program) return st;
     r->mesh_vp = gl.GetUniformLocation(r->mesh_program, "u_view_projection");
     r->mesh_bias = gl.GetUniformLocation(r->mesh_program, "u_depth_bias");
     r->mesh_paper = gl.GetUniformLocation(r->mesh_program, "u_paper");
@@ -233,7 +230,13 @@ bool renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config, c
     r->point_depth = gl.GetUniformLocation(r->point_program, "u_depth");
     r->line_vp = gl.GetUniformLocation(r->line_program, "u_view_projection");
     r->line_ink = gl.GetUniformLocation(r->line_program, "u_ink");
+    return {};
+}
 
+// Vertex arrays and buffers at their capacities; the triangle list is uploaded once.
+void create_buffers(Renderer* r) {
+    const GlApi& gl = r->gl;
+    const RendererConfig& config = r->config;
     gl.GenVertexArrays(1, &r->mesh_vao);
     gl.BindVertexArray(r->mesh_vao);
     r->mesh_vbo = dynamic_buffer(gl, 0, 3, size_t(config.vertex_count) * 12);
@@ -251,17 +254,27 @@ bool renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config, c
     gl.BindVertexArray(r->line_vao);
     r->line_vbo = dynamic_buffer(gl, 0, 3, size_t(config.max_lines) * 24);
     gl.BindVertexArray(0);
+}
 
-    if (gl.desktop) {
-        gl.Enable(0x8642);  // GL_PROGRAM_POINT_SIZE: desktop GL ignores gl_PointSize without it
-        gl.Enable(0x8861);  // GL_POINT_SPRITE: gl_PointCoord in compatibility profiles
+}  // namespace
+
+Status renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config) {
+    *r = Renderer();
+    r->gl = gl;
+    r->config = config;
+    Status st = create_framebuffers(r);
+    if (st.ok()) st = create_programs(r);
+    if (st.ok()) {
+        create_buffers(r);
+        if (gl.desktop) {
+            gl.Enable(0x8642);  // GL_PROGRAM_POINT_SIZE: desktop GL ignores gl_PointSize without it
+            gl.Enable(0x8861);  // GL_POINT_SPRITE: gl_PointCoord in compatibility profiles
+        }
+        if (gl.GetError() != GL_NO_ERROR)
+            st = make_status(StatusCode::gl_error, "GL error while creating renderer resources");
     }
-    if (gl.GetError() != GL_NO_ERROR) {
-        std::snprintf(error, error_size, "GL error while creating renderer resources");
-        renderer_destroy(r);
-        return false;
-    }
-    return true;
+    if (!st.ok()) renderer_destroy(r);
+    return st;
 }
 
 void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const float* positions,

@@ -9,19 +9,23 @@
 #include <glm/glm.hpp>
 
 #include "runtime/gl_api.h"
+#include "runtime/status.h"
 
 namespace stipple {
 
+// Filled by pipeline_init: the image size, line width and background come from the resolved
+// FrameConfig (runtime/frame_config.h, the one place for their defaults and limits), the
+// capacities from the asset.
 struct RendererConfig {
-    int width = 640;
-    int height = 480;
+    int width = 0;                      // pixels
+    int height = 0;
     uint32_t max_points = 0;            // capacity of the point buffers
     uint32_t vertex_count = 0;          // capacity of the mesh vertex buffer
     uint32_t max_lines = 0;             // capacity of the silhouette line buffer
-    float line_width = 1.0f;            // silhouette width in pixels (clamped to the GL range)
+    float line_width = 0.0f;            // silhouette width in pixels (clamped to the GL range)
     const uint32_t* indices = nullptr;  // triangle list, uploaded once
     uint32_t triangle_count = 0;
-    float background[3] = {1.0f, 1.0f, 1.0f};
+    float background[3] = {};
     float paper[3] = {1.0f, 1.0f, 1.0f};  // colour of the depth pass (the object's body)
     float ink[3] = {0.0f, 0.0f, 0.0f};
     // Clip-space depth offset of the mesh pass, as a fraction of w (NDC units): keeps dots
@@ -46,9 +50,9 @@ struct Renderer {
     GLint line_vp = -1, line_ink = -1;
 };
 
-// Creates the framebuffer, shaders and buffers. On failure writes one line into `error`.
-bool renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config, char* error,
-                   size_t error_size);
+// Creates the framebuffer, shaders and buffers. Fails with gl_error (incomplete framebuffer,
+// shader compile or link, a GL error), having released what it created.
+[[nodiscard]] Status renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config);
 
 // Draws one frame into the offscreen framebuffer.
 void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const float* positions,

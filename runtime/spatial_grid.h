@@ -23,7 +23,7 @@ struct SpatialGrid {
     glm::vec3 point(uint32_t i) const { return glm::vec3(points[i * 3], points[i * 3 + 1], points[i * 3 + 2]); }
 
     // Indexes the points i < n with use[i] > 0 (all if use is null). False if out of memory.
-    bool build(const float* p, uint32_t n, float cell_size, const float* use);
+    [[nodiscard]] bool build(const float* p, uint32_t n, float cell_size, const float* use);
 
     // Calls f(index) for the points in the cells overlapping the cube of half-size r at p.
     template <typename F>

@@ -1,5 +1,6 @@
 // The C API (runtime/stipple.h) over the C++ runtime: no exceptions cross it (the runtime
 // is built with -fno-exceptions and allocates with nothrow new).
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <new>
@@ -18,6 +19,16 @@ struct stipple_player {
 
 namespace {
 
+// stipple::StatusCode maps 1:1 onto stipple_result.
+static_assert(int(stipple::StatusCode::ok) == STIPPLE_OK, "");
+static_assert(int(stipple::StatusCode::invalid_argument) == STIPPLE_ERROR_INVALID_ARGUMENT, "");
+static_assert(int(stipple::StatusCode::io_error) == STIPPLE_ERROR_IO, "");
+static_assert(int(stipple::StatusCode::bad_asset) == STIPPLE_ERROR_BAD_ASSET, "");
+static_assert(int(stipple::StatusCode::unsupported_version) == STIPPLE_ERROR_UNSUPPORTED_VERSION,
+              "");
+static_assert(int(stipple::StatusCode::gl_error) == STIPPLE_ERROR_GL, "");
+static_assert(int(stipple::StatusCode::out_of_memory) == STIPPLE_ERROR_OUT_OF_MEMORY, "");
+
 thread_local char g_error[256] = "";
 
 stipple_result fail(stipple_result result, const char* message) {
@@ -25,17 +36,9 @@ stipple_result fail(stipple_result result, const char* message) {
     return result;
 }
 
-stipple_result from_load(const stipple::LoadStatus& st) {
-    switch (st.error) {
-        case stipple::LoadError::ok:
-            return STIPPLE_OK;
-        case stipple::LoadError::io_error:
-            return fail(STIPPLE_ERROR_IO, st.message);
-        case stipple::LoadError::unsupported_version:
-            return fail(STIPPLE_ERROR_UNSUPPORTED_VERSION, st.message);
-        default:
-            return fail(STIPPLE_ERROR_BAD_ASSET, st.message);
-    }
+stipple_result from_status(const stipple::Status& st) {
+    if (st.ok()) return STIPPLE_OK;
+    return fail(stipple_result(st.code), st.message);
 }
 
 template <typename Load>
@@ -44,13 +47,59 @@ stipple_result load(stipple_asset** out, Load&& load_into) {
     *out = nullptr;
     stipple_asset* a = new (std::nothrow) stipple_asset();
     if (!a) return fail(STIPPLE_ERROR_OUT_OF_MEMORY, "out of memory");
-    stipple_result r = from_load(load_into(&a->asset));
+    stipple_result r = from_status(load_into(&a->asset));
     if (r != STIPPLE_OK) {
         delete a;
         return r;
     }
     *out = a;
     return STIPPLE_OK;
+}
+
+// The description as frame settings: a zero field keeps FrameConfig's default (the table in
+// runtime/frame_config.h); resolve_frame_config then fills zero sizes and checks limits.
+stipple::FrameConfig frame_config_of(const stipple_player_desc& d) {
+    stipple::FrameConfig c;
+    c.width = d.width;
+    c.height = d.height;
+    c.zoom = d.zoom;
+    c.yaw_degrees = d.yaw_degrees;
+    c.pitch_degrees = d.pitch_degrees;
+    c.constant_tone = d.use_constant_tone ? d.constant_tone : stipple::kLightingTone;
+    c.max_point_size = d.max_point_size;
+    c.relevance_update = !d.no_relevance_update;
+    if (d.dark_tone_set) c.dark_tone = d.dark_tone;
+    if (d.refinement_budget < 0) c.refinement_budget = 0;
+    if (d.refinement_budget > 0) c.refinement_budget = uint32_t(d.refinement_budget);
+    c.silhouettes = !d.no_silhouettes;
+    c.skinning =
+        d.dual_quaternion_skinning ? stipple::anim::Skinning::dqs : stipple::anim::Skinning::lbs;
+    if (d.background_set)
+        for (int k = 0; k < 3; ++k)
+            c.background[k] = float((d.background_rgb >> (16 - 8 * k)) & 0xFF) / 255.0f;
+    return c;
+}
+
+// The inverse of frame_config_of for a resolved config: every field explicit.
+void desc_of(const stipple::FrameConfig& c, stipple_player_desc* d) {
+    d->width = c.width;
+    d->height = c.height;
+    d->zoom = c.zoom;
+    d->yaw_degrees = c.yaw_degrees;
+    d->pitch_degrees = c.pitch_degrees;
+    d->use_constant_tone = c.constant_tone != stipple::kLightingTone;
+    d->constant_tone = d->use_constant_tone ? c.constant_tone : 0.0f;
+    d->max_point_size = c.max_point_size;
+    d->no_relevance_update = !c.relevance_update;
+    d->no_silhouettes = !c.silhouettes;
+    d->dual_quaternion_skinning = c.skinning == stipple::anim::Skinning::dqs;
+    d->dark_tone_set = 1;
+    d->dark_tone = c.dark_tone;
+    d->refinement_budget = c.refinement_budget > 0 ? int(c.refinement_budget) : -1;
+    d->background_rgb = 0;
+    for (int k = 0; k < 3; ++k)
+        d->background_rgb |= uint32_t(std::lround(c.background[k] * 255.0f)) << (16 - 8 * k);
+    d->background_set = 1;
 }
 
 }  // namespace
@@ -95,51 +144,36 @@ int stipple_asset_find_clip(const stipple_asset* a, const char* name) {
     return a && name ? stipple::find_clip(a->asset, name) : -1;
 }
 
+stipple_result stipple_player_desc_resolve(const stipple_player_desc* in,
+                                           stipple_player_desc* out) {
+    if (!in || !out) return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "NULL argument");
+    stipple::FrameConfig c;
+    stipple_result r = from_status(stipple::resolve_frame_config(frame_config_of(*in), &c));
+    if (r != STIPPLE_OK) return r;
+    stipple_player_desc resolved = *in;  // get_proc_address and anything not a setting
+    desc_of(c, &resolved);
+    *out = resolved;
+    return STIPPLE_OK;
+}
+
 stipple_result stipple_player_create(const stipple_asset* asset, const stipple_player_desc* desc,
                                      stipple_player** out) {
     if (!asset || !desc || !out) return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "NULL argument");
     *out = nullptr;
     if (!desc->get_proc_address)
         return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "desc.get_proc_address is required");
-    // Defaults for zero fields, in one place.
-    stipple::PipelineConfig c;
-    c.width = desc->width > 0 ? desc->width : 640;
-    c.height = desc->height > 0 ? desc->height : 480;
-    c.zoom = desc->zoom > 0 ? desc->zoom : 1.0f;
-    c.yaw_degrees = desc->yaw_degrees;
-    c.pitch_degrees = desc->pitch_degrees;
-    c.constant_tone = desc->use_constant_tone ? desc->constant_tone : -1.0f;
-    c.max_point_size = desc->max_point_size > 0 ? desc->max_point_size : 3.0f;
-    c.relevance_update = !desc->no_relevance_update;
-    if (desc->dark_tone_set) c.dark_tone = desc->dark_tone;
-    if (desc->refinement_budget != 0)
-        c.refinement_budget = desc->refinement_budget < 0 ? 0u : uint32_t(desc->refinement_budget);
-    c.silhouettes = !desc->no_silhouettes;
-    c.skinning = desc->dual_quaternion_skinning ? stipple::anim::Skinning::dqs
-                                                : stipple::anim::Skinning::lbs;
-    if (desc->background_set)
-        for (int k = 0; k < 3; ++k)
-            c.background[k] = float((desc->background_rgb >> (16 - 8 * k)) & 0xFF) / 255.0f;
-    if (c.width > 16384 || c.height > 16384 ||
-        (desc->use_constant_tone && !(c.constant_tone >= 0 && c.constant_tone <= 1)))
-        return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "size or tone out of range");
-    if (!(c.dark_tone >= 0 && c.dark_tone <= 1))
-        return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "dark_tone out of [0, 1]");
-    if (desc->refinement_budget > (1 << 22))
-        return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "refinement_budget above 4194304");
-
+    stipple::FrameConfig c;  // checked before any GL call
+    stipple_result r = from_status(stipple::resolve_frame_config(frame_config_of(*desc), &c));
+    if (r != STIPPLE_OK) return r;
     stipple::GlApi gl;
-    if (const char* missing = stipple::load_gl_api(desc->get_proc_address, &gl)) {
-        char message[96];
-        std::snprintf(message, sizeof(message), "GL entry point %s unavailable", missing);
-        return fail(STIPPLE_ERROR_GL, message);
-    }
+    r = from_status(stipple::load_gl_api(desc->get_proc_address, &gl));
+    if (r != STIPPLE_OK) return r;
     stipple_player* p = new (std::nothrow) stipple_player();
     if (!p) return fail(STIPPLE_ERROR_OUT_OF_MEMORY, "out of memory");
-    char message[256] = {};
-    if (!stipple::pipeline_init(&p->pipeline, asset->asset, gl, c, message, sizeof(message))) {
+    r = from_status(stipple::pipeline_init(&p->pipeline, asset->asset, gl, c));
+    if (r != STIPPLE_OK) {
         delete p;
-        return fail(STIPPLE_ERROR_GL, message);
+        return r;
     }
     *out = p;
     return STIPPLE_OK;

@@ -4,18 +4,22 @@
 
 #include <glm/glm.hpp>
 
+#include "runtime/frame_config.h"
+
 namespace stipple {
 
+// The pipeline fills the frame settings here from its resolved FrameConfig; the initialisers
+// are the defaults of runtime/frame_config.h's table, for callers that size points directly.
 struct SizeParams {
     glm::mat4 view_projection = glm::mat4(1.0f);
     glm::vec3 eye = glm::vec3(0.0f);        // camera position (world)
-    float viewport_height = 480.0f;         // pixels
-    float max_point_size = 3.0f;            // MaximumPtSize, pixels (thesis: typically ~3)
-    float smooth_slope = 2.0f;              // smoothSlope of Alg. 3.2, > 1
-    float constant_tone = -1.0f;            // in [0,1] to override lighting; < 0: Lambert
+    float viewport_height = float(kFrameSettings.height.fallback);  // pixels
+    float max_point_size = kFrameSettings.max_point_size.fallback;  // MaximumPtSize, pixels
+    float smooth_slope = kFrameSettings.smooth_slope.fallback;      // Alg. 3.2's smoothSlope, > 1
+    float constant_tone = kFrameSettings.constant_tone.fallback;    // in [0,1]; < 0: Lambert
     glm::vec3 light_direction = glm::vec3(0.0f, 0.0f, 1.0f);  // towards the light, unit
-    float dark_tone = 0.6f;                 // target tone where N.L <= 0: the darkest tone
-                                            // lighting asks for (thesis §8.4's limit)
+    // Target tone where N.L <= 0: the darkest tone lighting asks for (thesis §8.4's limit).
+    float dark_tone = kFrameSettings.dark_tone.fallback;
     float light_tone = 0.0f;                // target tone where N.L = 1
     // Dots overlap as tone rises, so ink laid down is not darkness seen. Ink asked for tone T
     // is T (1 + overlap_gain T^overlap_power): 2% more at 0.3, 12% at 0.6, 35% at 0.9, 46% at

@@ -1,6 +1,20 @@
 #!/usr/bin/env bash
 # Builds stipple and runs every test (unit tests and headless EGL frame checks).
+#   scripts/test.sh             Release build in build/
+#   scripts/test.sh --sanitize  AddressSanitizer + UndefinedBehaviorSanitizer build in build-asan/
+#                               (STIPPLE_SANITIZE=address,undefined; leaks inside Mesa/EGL are
+#                               suppressed by tests/sanitizers/lsan.supp, set by the tests' CMake)
+# Extra arguments after the mode go to ctest (e.g. -R Anim).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [[ "${1:-}" == "--sanitize" ]]; then
+  shift
+  ./scripts/setup.sh  # the packages (and the Release build the bake-time tools use)
+  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTIPPLE_SANITIZE=address,undefined \
+    -DSTIPPLE_BUILD_BENCH=OFF > build-asan.log 2>&1 || { cat build-asan.log; exit 1; }
+  cmake --build build-asan -j"$(nproc)" >> build-asan.log 2>&1 || { tail -50 build-asan.log; exit 1; }
+  cd build-asan && ctest --output-on-failure -j2 "$@"
+  exit
+fi
 ./scripts/setup.sh
-cd build && ctest --output-on-failure -j2
+cd build && ctest --output-on-failure -j2 "$@"

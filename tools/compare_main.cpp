@@ -11,16 +11,22 @@
 #include <string>
 #include <vector>
 
+#include "tools/cli_options.h"
 #include "tools/image_write.h"
+#include "tools/json_line.h"
 
 namespace {
+
+using stipple::cli::Json;
 
 const char* kUsage =
     "usage: stipple-compare ACTUAL.png GOLDEN.png [options]\n"
     "  --tolerance N       per-channel absolute difference allowed, 0..255 (default 3)\n"
     "  --max-fraction F    fraction of pixels allowed to fail, 0..1 (default 0.001)\n"
     "  --shift N           a pixel passes if it matches within N pixels (default 0, max 4)\n"
-    "  --diff OUT.png      write a diff image (failing pixels red over a faded golden)\n"
+    "  --diff OUT.png      write a diff image (failing pixels red over a faded golden;\n"
+    "                      default none)\n"
+    "  -h, --help          this text\n"
     "exit status: 0 passed, 1 failed, 2 bad usage or unreadable input\n";
 
 struct Image {
@@ -29,9 +35,11 @@ struct Image {
     const uint8_t* at(int x, int y) const { return &rgba[(size_t(y) * size_t(w) + size_t(x)) * 4]; }
 };
 
+constexpr int kUsageStatus = 2;  // exit status: 0 passed, 1 failed, 2 bad usage
+
 [[noreturn]] void usage_error(const std::string& message) {
     std::fprintf(stderr, "stipple-compare: %s\n", message.c_str());
-    std::exit(2);
+    std::exit(kUsageStatus);
 }
 
 Image load(const char* path) {
@@ -53,42 +61,25 @@ int difference(const uint8_t* a, const uint8_t* b) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::vector<const char*> files;
+    std::vector<std::string> files;
     int tolerance = 3, shift = 0;
     double max_fraction = 0.001;
-    const char* diff_path = nullptr;
-    for (int i = 1; i < argc; ++i) {
-        std::string a = argv[i];
-        auto value = [&]() -> const char* {
-            if (i + 1 >= argc) usage_error("option " + a + " needs a value");
-            return argv[++i];
-        };
-        if (a == "-h" || a == "--help") {
-            std::fputs(kUsage, stdout);
-            return 0;
-        } else if (a == "--tolerance") {
-            tolerance = std::atoi(value());
-            if (tolerance < 0 || tolerance > 255) usage_error("--tolerance must be in [0, 255]");
-        } else if (a == "--max-fraction") {
-            max_fraction = std::atof(value());
-            if (!(max_fraction >= 0 && max_fraction <= 1))
-                usage_error("--max-fraction must be in [0, 1]");
-        } else if (a == "--shift") {
-            shift = std::atoi(value());
-            if (shift < 0 || shift > 4) usage_error("--shift must be in [0, 4]");
-        } else if (a == "--diff") {
-            diff_path = value();
-        } else if (!a.empty() && a[0] == '-') {
-            usage_error("unknown option '" + a + "' (see --help)");
-        } else {
-            files.push_back(argv[i]);
-        }
-    }
+    std::string diff_path;
+    stipple::cli::Parser p("stipple-compare", kUsage, kUsageStatus);
+    p.integer("--tolerance", 0, 255, &tolerance)
+        .number("--max-fraction", 0, 1, &max_fraction)
+        .integer("--shift", 0, 4, &shift)
+        .text("--diff", &diff_path)
+        .rest(&files);
+    p.parse(argc, argv);
     if (files.size() != 2) usage_error("need ACTUAL.png and GOLDEN.png (see --help)");
-    Image actual = load(files[0]), golden = load(files[1]);
+    Image actual = load(files[0].c_str()), golden = load(files[1].c_str());
     if (actual.w != golden.w || actual.h != golden.h) {
-        std::printf("{\"passed\": false, \"reason\": \"size %dx%d vs golden %dx%d\"}\n", actual.w,
-                    actual.h, golden.w, golden.h);
+        Json j;
+        j["passed"] = false;
+        j["reason"] = "size " + std::to_string(actual.w) + "x" + std::to_string(actual.h) +
+                      " vs golden " + std::to_string(golden.w) + "x" + std::to_string(golden.h);
+        stipple::cli::print_json(j);
         return 1;
     }
     size_t failing = 0;
@@ -113,14 +104,18 @@ int main(int argc, char** argv) {
         }
     const double fraction = double(failing) / (double(golden.w) * double(golden.h));
     const bool passed = fraction <= max_fraction;
-    std::printf(
-        "{\"passed\": %s, \"failing_pixels\": %zu, \"failing_fraction\": %.6f, "
-        "\"max_difference\": %d, \"tolerance\": %d, \"max_fraction\": %g, \"shift\": %d}\n",
-        passed ? "true" : "false", failing, fraction, max_difference, tolerance, max_fraction,
-        shift);
+    Json j;
+    j["passed"] = passed;
+    j["failing_pixels"] = failing;
+    j["failing_fraction"] = stipple::cli::fixed(fraction, 6);
+    j["max_difference"] = max_difference;
+    j["tolerance"] = tolerance;
+    j["max_fraction"] = stipple::cli::significant(max_fraction, 6);
+    j["shift"] = shift;
+    stipple::cli::print_json(j);
     std::string error;
-    if (diff_path &&
-        !stipple::image::write_png(diff_path, golden.w, golden.h, diff.data(), false, &error)) {
+    if (!diff_path.empty() &&
+        !stipple::image::write_png(diff_path.c_str(), golden.w, golden.h, diff.data(), false, &error)) {
         std::fprintf(stderr, "stipple-compare: %s\n", error.c_str());
         return 2;
     }

@@ -2,37 +2,15 @@
 
 #include <stb/stb_image_write.h>
 
-#include <array>
 #include <cerrno>
 #include <climits>
 #include <cstring>
 #include <vector>
 
+#include "runtime/crc32.h"
+
 namespace stipple::image {
 namespace {
-
-// --- CRC-32 (ISO 3309 / ITU-T V.42, the polynomial PNG and zlib use; PNG spec §5.5) ---
-
-constexpr uint32_t kCrcPolynomial = 0xEDB88320u;  // 0x04C11DB7 bit-reversed
-
-constexpr std::array<uint32_t, 256> make_crc_table() {
-    std::array<uint32_t, 256> table{};
-    for (uint32_t n = 0; n < 256; ++n) {
-        uint32_t c = n;
-        for (int k = 0; k < 8; ++k) c = (c & 1u) ? kCrcPolynomial ^ (c >> 1) : c >> 1;
-        table[n] = c;
-    }
-    return table;
-}
-
-constexpr std::array<uint32_t, 256> kCrcTable = make_crc_table();
-
-// Continues a running CRC the way zlib's crc32() does: start with 0, feed pieces in order.
-uint32_t crc32(const uint8_t* data, size_t size, uint32_t crc = 0) {
-    crc = ~crc;
-    for (size_t i = 0; i < size; ++i) crc = kCrcTable[(crc ^ data[i]) & 0xFFu] ^ (crc >> 8);
-    return ~crc;
-}
 
 // --- Small helpers ---
 
@@ -145,9 +123,9 @@ bool write_chunk(std::FILE* file, const char* type, const uint8_t* prefix, size_
     uint8_t header[8];
     put_u32(header, static_cast<uint32_t>(prefix_size + data_size));
     std::memcpy(header + 4, type, 4);
-    uint32_t crc = crc32(header + 4, 4);
-    if (prefix_size) crc = crc32(prefix, prefix_size, crc);
-    if (data_size) crc = crc32(data, data_size, crc);
+    uint32_t crc = format::crc32(header + 4, 4);
+    if (prefix_size) crc = format::crc32(prefix, prefix_size, crc);
+    if (data_size) crc = format::crc32(data, data_size, crc);
     uint8_t trailer[4];
     put_u32(trailer, crc);
     return std::fwrite(header, 1, 8, file) == 8 &&

@@ -25,6 +25,8 @@
 #include <string>
 #include <vector>
 
+#include "tools/cli_options.h"
+
 namespace {
 
 struct Vec {
@@ -57,32 +59,29 @@ std::vector<Vec> farthest_points(int points, int per_point, uint64_t seed);
 
 }  // namespace
 
+const char* const kUsage =
+    "usage: make-refinement-pattern OUT.inc [options]\n"
+    "  --points N                points per pattern, in [1, 65536] (default 8192)\n"
+    "  --patterns K              patterns (seeds), in [1, 64] (default 2)\n"
+    "  --candidates-per-point C  random candidates per point, in [4, 1024] (default 48)\n"
+    "  --seed S                  seed of the first pattern (default 1)\n"
+    "  -h, --help                this text\n";
+
 int main(int argc, char** argv) {
-    if (argc < 2 || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "--help")) {
-        std::puts("usage: make-refinement-pattern OUT.inc [--points N] [--candidates-per-point C] [--seed S]");
-        return argc < 2 ? 1 : 0;
-    }
     int points = 8192, per_point = 48, patterns = 2;
     uint64_t seed = 1;
-    for (int i = 2; i + 1 < argc; i += 2) {
-        if (!std::strcmp(argv[i], "--points")) points = std::atoi(argv[i + 1]);
-        else if (!std::strcmp(argv[i], "--candidates-per-point")) per_point = std::atoi(argv[i + 1]);
-        else if (!std::strcmp(argv[i], "--seed")) seed = std::strtoull(argv[i + 1], nullptr, 10);
-        else if (!std::strcmp(argv[i], "--patterns")) patterns = std::atoi(argv[i + 1]);
-        else {
-            std::fprintf(stderr, "make-refinement-pattern: unknown option '%s'\n", argv[i]);
-            return 1;
-        }
-    }
-    if (points < 1 || points > 65536 || per_point < 4 || per_point > 1024 || patterns < 1 || patterns > 64) {
-        std::fprintf(stderr,
-                     "make-refinement-pattern: --points in [1, 65536], --patterns in [1, 64], "
-                     "--candidates-per-point in [4, 1024]\n");
-        return 1;
-    }
-    FILE* f = std::fopen(argv[1], "w");
+    std::string out;
+    stipple::cli::Parser p("make-refinement-pattern", kUsage);
+    p.positional("output", &out)
+        .integer("--points", 1, 65536, &points)
+        .integer("--patterns", 1, 64, &patterns)
+        .integer("--candidates-per-point", 4, 1024, &per_point)
+        .seed("--seed", &seed);
+    p.parse(argc, argv);
+    if (out.empty()) p.fail("no output file (see --help)");
+    FILE* f = std::fopen(out.c_str(), "w");
     if (!f) {
-        std::fprintf(stderr, "make-refinement-pattern: cannot write '%s'\n", argv[1]);
+        std::fprintf(stderr, "make-refinement-pattern: cannot write '%s'\n", out.c_str());
         return 1;
     }
     std::fprintf(f,

@@ -16,7 +16,6 @@
 
 #include <tiny_gltf.h>
 
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -27,6 +26,8 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <string>
 #include <vector>
+
+#include "tools/cli_options.h"
 
 namespace {
 
@@ -62,81 +63,33 @@ struct TubeMesh {
     std::vector<uint32_t> indices;  // triangles
 };
 
-void print_usage(std::FILE* out) {
-    std::fprintf(
-        out,
+std::string usage() {
+    char text[800];
+    std::snprintf(
+        text, sizeof(text),
         "usage: make-stretch-tube OUT.gltf [--segments-around N] [--segments-along M]\n"
         "  Writes a skinned closed tube (radius 0.25, y from 0 to 2) with joints \"lower\"\n"
         "  and \"upper\" and animations \"stretch\" (upper scaled 1 -> 2 -> 1 along Y over\n"
         "  2 s), \"rest\" and \"sweep\" (upper scaled 0.5 -> 2.5 along Y over 2 s), as glTF\n"
         "  with an embedded buffer.\n"
         "  --segments-around N   quads around the tube, 3..%d (default %d)\n"
-        "  --segments-along M    quads along the tube, 1..%d (default %d)\n",
+        "  --segments-along M    quads along the tube, 1..%d (default %d)\n"
+        "  -h, --help            this text\n",
         kMaxSegments, kDefaultSegmentsAround, kMaxSegments, kDefaultSegmentsAlong);
+    return text;
 }
 
-bool parse_int(const std::string& text, int lo, int hi, int* value) {
-    if (text.empty()) return false;
-    errno = 0;
-    char* end = nullptr;
-    const long v = std::strtol(text.c_str(), &end, 10);
-    if (errno != 0 || *end != '\0' || v < lo || v > hi) return false;
-    *value = static_cast<int>(v);
-    return true;
-}
-
-// Returns 0 when the options are usable, -1 after --help, or 2 after printing a one-line error.
-int parse_options(int argc, char** argv, Options* options) {
-    for (int i = 1; i < argc; ++i) {
-        std::string arg = argv[i];
-        if (arg == "--help" || arg == "-h") {
-            print_usage(stdout);
-            return -1;
-        }
-        if (arg.rfind("--", 0) == 0) {
-            std::string value;
-            const size_t eq = arg.find('=');
-            if (eq != std::string::npos) {
-                value = arg.substr(eq + 1);
-                arg = arg.substr(0, eq);
-            } else if (i + 1 < argc) {
-                value = argv[++i];
-            } else {
-                std::fprintf(stderr, "make-stretch-tube: %s needs a value (see --help)\n",
-                             arg.c_str());
-                return 2;
-            }
-            int* target = nullptr;
-            int lo = 1;
-            if (arg == "--segments-around") {
-                target = &options->segments_around;
-                lo = 3;
-            } else if (arg == "--segments-along") {
-                target = &options->segments_along;
-            } else {
-                std::fprintf(stderr, "make-stretch-tube: unknown option '%s' (see --help)\n",
-                             arg.c_str());
-                return 2;
-            }
-            if (!parse_int(value, lo, kMaxSegments, target)) {
-                std::fprintf(stderr,
-                             "make-stretch-tube: %s wants an integer in [%d, %d], got '%s'\n",
-                             arg.c_str(), lo, kMaxSegments, value.c_str());
-                return 2;
-            }
-        } else if (options->out_path.empty()) {
-            options->out_path = arg;
-        } else {
-            std::fprintf(stderr, "make-stretch-tube: more than one output path ('%s', '%s')\n",
-                         options->out_path.c_str(), arg.c_str());
-            return 2;
-        }
-    }
-    if (options->out_path.empty()) {
-        std::fprintf(stderr, "make-stretch-tube: no output path (see --help)\n");
-        return 2;
-    }
-    return 0;
+// Bad options end the tool with a one-line error and exit status 1.
+Options parse_options(int argc, char** argv) {
+    Options options;
+    const std::string text = usage();
+    stipple::cli::Parser p("make-stretch-tube", text.c_str());
+    p.positional("output path", &options.out_path)
+        .integer("--segments-around", 3, kMaxSegments, &options.segments_around)
+        .integer("--segments-along", 1, kMaxSegments, &options.segments_along);
+    p.parse(argc, argv);
+    if (options.out_path.empty()) p.fail("no output path (see --help)");
+    return options;
 }
 
 // Rigid below kBlendBegin, rigid above kBlendEnd, linear in between.
@@ -295,12 +248,9 @@ void add_scale_animation(tinygltf::Model* model, const char* name, int node,
     model->animations.push_back(animation);
 }
 
-tinygltf::Model build_model(const TubeMesh& mesh) {
-    tinygltf::Model model;
-    model.asset.version = "2.0";
-    model.asset.generator = "stipple tools/make_stretch_tube.cpp";
-    model.buffers.resize(1);
-
+// The tube's one primitive: vertex attributes (one tightly packed view each) and indices.
+tinygltf::Primitive add_tube_primitive(tinygltf::Model* model_out, const TubeMesh& mesh) {
+    tinygltf::Model& model = *model_out;
     // Vertex attributes, one tightly packed view each.
     std::vector<float> positions, normals, weights;
     std::vector<uint8_t> joints;
@@ -339,12 +289,12 @@ tinygltf::Model build_model(const TubeMesh& mesh) {
             &model, add_array(&model, mesh.indices, kElementArrayBuffer),
             TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, mesh.indices.size());
     }
-    tinygltf::Mesh gltf_mesh;
-    gltf_mesh.name = "tube";
-    gltf_mesh.primitives.push_back(primitive);
-    model.meshes.push_back(gltf_mesh);
+    return primitive;
+}
 
-    // Nodes: 0 "lower" (joint root), 1 "upper" (its child), 2 the skinned mesh.
+// Nodes 0 "lower" (joint root), 1 "upper" (its child), 2 the skinned mesh, and the skin.
+void add_rig(tinygltf::Model* model_out) {
+    tinygltf::Model& model = *model_out;
     tinygltf::Node lower;
     lower.name = "lower";
     lower.children = {1};
@@ -375,6 +325,18 @@ tinygltf::Model build_model(const TubeMesh& mesh) {
     skin.inverseBindMatrices = add_accessor(&model, add_array(&model, inverse_binds, 0),
                                             TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4, 2);
     model.skins.push_back(skin);
+}
+
+tinygltf::Model build_model(const TubeMesh& mesh) {
+    tinygltf::Model model;
+    model.asset.version = "2.0";
+    model.asset.generator = "stipple tools/make_stretch_tube.cpp";
+    model.buffers.resize(1);
+    tinygltf::Mesh gltf_mesh;
+    gltf_mesh.name = "tube";
+    gltf_mesh.primitives.push_back(add_tube_primitive(&model, mesh));
+    model.meshes.push_back(gltf_mesh);
+    add_rig(&model);
 
     add_scale_animation(&model, "stretch", 1, {0.0f, 1.0f, 2.0f},
                         {glm::vec3(1.0f), glm::vec3(1.0f, 2.0f, 1.0f), glm::vec3(1.0f)});
@@ -417,10 +379,7 @@ bool reload_matches(const std::string& path, const tinygltf::Model& written, std
 }  // namespace
 
 int main(int argc, char** argv) {
-    Options options;
-    const int parsed = parse_options(argc, argv, &options);
-    if (parsed == -1) return 0;
-    if (parsed != 0) return parsed;
+    const Options options = parse_options(argc, argv);
 
     const TubeMesh mesh = build_tube(options.segments_around, options.segments_along);
     if (!winding_is_outward(mesh)) {

@@ -12,8 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "tools/cli_args.h"
+#include "tools/cli_options.h"
 #include "tools/frame_measure.h"
+#include "tools/json_line.h"
 
 namespace {
 
@@ -36,14 +37,16 @@ const char* kUsage =
 const char* kToneUsage =
     "usage: stipple-measure tone FRAME.png --mask MASK.png [--rows A:B]\n"
     "  Mean darkness 1 - luminance (Rec.709) of FRAME over the pixels inside MASK (same size).\n"
-    "  --rows A:B   only image rows A..B-1 (0 = top row): a horizontal band\n"
+    "  --rows A:B   only image rows A..B-1 (0 = top row): a horizontal band; integers with\n"
+    "               0 <= A <= B <= 1000000 (default: all rows)\n"
     "  Prints {frame, mask, width, height, [rows,] tone, mask_pixels (inside pixels averaged),\n"
     "  mask_rows: [top, bottom], mask_columns: [left, right]} (the whole mask's extent).\n";
 
 const char* kEvennessUsage =
     "usage: stipple-measure evenness DOTS.csv --mask MASK.png [--block N]\n"
     "  Screen-space evenness of the dots whose centre pixel is inside MASK.\n"
-    "  --block N    side of the square blocks for empty-block counts (default 16)\n"
+    "  --block N    side of the square blocks for empty-block counts, in [1, 4096]\n"
+    "               (default 16)\n"
     "  Prints {dots_file, mask, block, dots_listed, dots, median_nn, mean_nn, nn_cv,\n"
     "  clump_share, blocks_inside, empty_blocks, empty_share}.\n";
 
@@ -53,6 +56,7 @@ const char* kCoherenceUsage =
     "  consecutive pair: persistence, appeared, vanished, pops (big dots appearing or vanishing\n"
     "  more than 4 px inside the mask), pop_share. Default: from 0 (or the first dots file) to\n"
     "  the last of the consecutive run of dots files.\n"
+    "  --from N, --to N  first and last frame, integers in [0, 999999999] (defaults above)\n"
     "  --contours DIR2  DIR2/frame_NNNN.png are the same frames drawn with --tone 0 and\n"
     "                   silhouettes on: their line pixels (luminance < 0.5) leave the mask, so\n"
     "                   'away from silhouettes' also means away from inner contours (a leg\n"
@@ -65,57 +69,19 @@ const char* kFramesUsage =
     "  DIR/dots_NNNN.csv exists; then a coherence summary over consecutive frames with dots.\n"
     "  Prints {dir, frames: [...], summary: {...}}.\n";
 
-// ---- JSON output -------------------------------------------------------------------------
+// ---- JSON output (tools/json_line.h) ----------------------------------------------------
 
-std::string json_string(const std::string& s) {
-    std::string out = "\"";
-    for (unsigned char c : s) {
-        switch (c) {
-            case '"': out += "\\\""; break;
-            case '\\': out += "\\\\"; break;
-            case '\n': out += "\\n"; break;
-            case '\r': out += "\\r"; break;
-            case '\t': out += "\\t"; break;
-            case '\b': out += "\\b"; break;
-            case '\f': out += "\\f"; break;
-            default:
-                if (c < 0x20) {
-                    char buf[8];
-                    std::snprintf(buf, sizeof(buf), "\\u%04x", c);
-                    out += buf;
-                } else {
-                    out += char(c);  // UTF-8 bytes pass through
-                }
-        }
-    }
-    return out + "\"";
-}
+using stipple::cli::Json;
 
-std::string json_number(double v) {
-    if (!std::isfinite(v)) return "null";
-    char buf[64];
-    std::snprintf(buf, sizeof(buf), "%.6g", v);
-    return buf;
-}
-
-std::string json_int(long long v) { return std::to_string(v); }
-std::string json_size(size_t v) { return std::to_string(v); }
-
-// Builds one JSON object as "key": value pairs in insertion order.
-struct Object {
-    std::string text;
-    Object& add(const char* key, const std::string& raw_value) {
-        text += (text.empty() ? "" : ", ") + json_string(key) + ": " + raw_value;
-        return *this;
-    }
-    std::string str() const { return "{" + text + "}"; }
-};
+// Measured values keep the 6 significant digits the tool always printed; NaN and infinity
+// become null.
+double number(double v) { return stipple::cli::significant(v, 6); }
 
 // ---- helpers ----------------------------------------------------------------------------
 
-stipple::cli::Args* g_args = nullptr;
+stipple::cli::Parser g_tool("stipple-measure", kUsage);
 
-[[noreturn]] void die(const std::string& message) { g_args->die(message); }
+[[noreturn]] void die(const std::string& message) { g_tool.fail(message); }
 
 m::Mask load_mask(const std::string& path) {
     m::Mask mask;
@@ -179,84 +145,68 @@ void require_same_size(const m::Mask& a, int w, int h, const std::string& what) 
             ", " + what + " is " + std::to_string(w) + "x" + std::to_string(h));
 }
 
-std::string evenness_fields(const m::Evenness& e, Object* o) {
-    o->add("dots", json_size(e.dots))
-        .add("median_nn", json_number(e.median_nn))
-        .add("mean_nn", json_number(e.mean_nn))
-        .add("nn_cv", json_number(e.nn_cv))
-        .add("clump_share", json_number(e.clump_share))
-        .add("blocks_inside", json_int(e.blocks_inside))
-        .add("empty_blocks", json_int(e.empty_blocks))
-        .add("empty_share", json_number(e.blocks_inside
-                                            ? double(e.empty_blocks) / double(e.blocks_inside)
-                                            : 0.0));
-    return o->str();
+void add_evenness(const m::Evenness& e, Json* o) {
+    Json& j = *o;
+    j["dots"] = e.dots;
+    j["median_nn"] = number(e.median_nn);
+    j["mean_nn"] = number(e.mean_nn);
+    j["nn_cv"] = number(e.nn_cv);
+    j["clump_share"] = number(e.clump_share);
+    j["blocks_inside"] = e.blocks_inside;
+    j["empty_blocks"] = e.empty_blocks;
+    j["empty_share"] =
+        number(e.blocks_inside ? double(e.empty_blocks) / double(e.blocks_inside) : 0.0);
 }
 
-std::string pair_json(long from, long to, size_t dots_before, size_t dots_after,
-                      const m::FramePair& p) {
-    Object o;
-    o.add("from", json_int(from))
-        .add("to", json_int(to))
-        .add("dots_before", json_size(dots_before))
-        .add("dots_after", json_size(dots_after))
-        .add("persistence", json_number(p.persistence))
-        .add("appeared", json_size(p.appeared))
-        .add("vanished", json_size(p.vanished))
-        .add("pops", json_size(p.pops))
-        .add("pop_share", json_number(p.pop_share));
-    return o.str();
+Json pair_json(long from, long to, size_t dots_before, size_t dots_after, const m::FramePair& p) {
+    Json j;
+    j["from"] = from;
+    j["to"] = to;
+    j["dots_before"] = dots_before;
+    j["dots_after"] = dots_after;
+    j["persistence"] = number(p.persistence);
+    j["appeared"] = p.appeared;
+    j["vanished"] = p.vanished;
+    j["pops"] = p.pops;
+    j["pop_share"] = number(p.pop_share);
+    return j;
 }
 
-std::string summary_json(const m::Coherence& c, const std::vector<long>& pair_start) {
-    auto frame_of = [&](int pair) { return pair >= 0 ? json_int(pair_start[size_t(pair)]) : "null"; };
-    Object o;
-    o.add("pairs", json_size(c.pairs))
-        .add("mean_persistence", json_number(c.mean_persistence))
-        .add("worst_persistence", json_number(c.worst_persistence))
-        .add("worst_persistence_from", frame_of(c.worst_persistence_pair))
-        .add("mean_pop_share", json_number(c.mean_pop_share))
-        .add("max_pop_share", json_number(c.max_pop_share))
-        .add("max_pop_share_from", frame_of(c.max_pop_share_pair))
-        .add("pops", json_size(c.pops));
-    return o.str();
-}
-
-bool wants_help(int argc, char** argv) {
-    for (int i = 2; i < argc; ++i)
-        if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return true;
-    return false;
-}
-
-long frame_number(stipple::cli::Args& args, const std::string& option) {
-    return long(args.number(option, args.value(option), 0, 999999999));
+Json summary_json(const m::Coherence& c, const std::vector<long>& pair_start) {
+    auto frame_of = [&](int pair) { return pair >= 0 ? Json(pair_start[size_t(pair)]) : Json(); };
+    Json j;
+    j["pairs"] = c.pairs;
+    j["mean_persistence"] = number(c.mean_persistence);
+    j["worst_persistence"] = number(c.worst_persistence);
+    j["worst_persistence_from"] = frame_of(c.worst_persistence_pair);
+    j["mean_pop_share"] = number(c.mean_pop_share);
+    j["max_pop_share"] = number(c.max_pop_share);
+    j["max_pop_share_from"] = frame_of(c.max_pop_share_pair);
+    j["pops"] = c.pops;
+    return j;
 }
 
 // ---- commands ---------------------------------------------------------------------------
 
-int tone(stipple::cli::Args& args) {
-    std::string frame, mask_path, a;
+constexpr int kMaxFrameNumber = 999999999;
+
+int tone(int argc, char** argv) {
+    std::string frame, mask_path;
     int row_begin = 0, row_end = -1;
     bool rows = false;
-    while (args.next(&a)) {
-        if (a == "--mask") {
-            mask_path = args.value(a);
-        } else if (a == "--rows") {
-            const std::string v = args.value(a);
+    stipple::cli::Parser p("stipple-measure", kToneUsage);
+    p.command("tone")
+        .positional("frame", &frame)
+        .text("--mask", &mask_path)
+        .custom("--rows", [&](const std::string& name, const std::string& v) {
             const size_t colon = v.find(':');
-            if (colon == std::string::npos) die("--rows takes A:B, got '" + v + "'");
-            row_begin = int(args.number("--rows A", v.substr(0, colon).c_str(), 0, 1e6));
-            row_end = int(args.number("--rows B", v.substr(colon + 1).c_str(), 0, 1e6));
+            if (colon == std::string::npos) p.bad_value(name, "A:B", v);
+            row_begin = int(p.integer_value(name + " A", v.substr(0, colon), 0, 1000000));
+            row_end = int(p.integer_value(name + " B", v.substr(colon + 1), 0, 1000000));
             if (row_end < row_begin) die("--rows A:B needs A <= B, got '" + v + "'");
             rows = true;
-        } else if (!a.empty() && a[0] == '-') {
-            die("tone: unknown option '" + a + "' (see tone --help)");
-        } else if (frame.empty()) {
-            frame = a;
-        } else {
-            die("tone: more than one frame given ('" + frame + "', '" + a + "')");
-        }
-    }
+        });
+    p.parse(argc, argv, 2);
     if (frame.empty()) die("tone: no frame given (see tone --help)");
     if (mask_path.empty()) die("tone: no mask given: pass --mask MASK.png");
     m::Image image;
@@ -270,54 +220,48 @@ int tone(stipple::cli::Args& args) {
         m::mean_tone_rows(image.rgba.data(), image.width, image.height, mask, row_begin, row_end,
                           &pixels);
     const m::MaskExtent e = m::mask_extent(mask);
-    Object o;
-    o.add("frame", json_string(frame))
-        .add("mask", json_string(mask_path))
-        .add("width", json_int(image.width))
-        .add("height", json_int(image.height));
-    if (rows) o.add("rows", "[" + json_int(row_begin) + ", " + json_int(row_end) + "]");
-    o.add("tone", json_number(t))
-        .add("mask_pixels", json_size(pixels))
-        .add("mask_rows", "[" + json_int(e.top) + ", " + json_int(e.bottom) + "]")
-        .add("mask_columns", "[" + json_int(e.left) + ", " + json_int(e.right) + "]");
-    std::printf("%s\n", o.str().c_str());
+    Json o;
+    o["frame"] = frame;
+    o["mask"] = mask_path;
+    o["width"] = image.width;
+    o["height"] = image.height;
+    if (rows) o["rows"] = {row_begin, row_end};
+    o["tone"] = number(t);
+    o["mask_pixels"] = pixels;
+    o["mask_rows"] = {e.top, e.bottom};
+    o["mask_columns"] = {e.left, e.right};
+    stipple::cli::print_json(o);
     return 0;
 }
 
-int evenness(stipple::cli::Args& args) {
-    std::string dots_path, mask_path, a;
+int evenness(int argc, char** argv) {
+    std::string dots_path, mask_path;
     int block = 16;
-    while (args.next(&a)) {
-        if (a == "--mask") {
-            mask_path = args.value(a);
-        } else if (a == "--block") {
-            block = int(args.number(a, args.value(a), 1, 4096));
-        } else if (!a.empty() && a[0] == '-') {
-            die("evenness: unknown option '" + a + "' (see evenness --help)");
-        } else if (dots_path.empty()) {
-            dots_path = a;
-        } else {
-            die("evenness: more than one dots file given ('" + dots_path + "', '" + a + "')");
-        }
-    }
+    stipple::cli::Parser p("stipple-measure", kEvennessUsage);
+    p.command("evenness")
+        .positional("dots file", &dots_path)
+        .text("--mask", &mask_path)
+        .integer("--block", 1, 4096, &block);
+    p.parse(argc, argv, 2);
     if (dots_path.empty()) die("evenness: no dots file given (see evenness --help)");
     if (mask_path.empty()) die("evenness: no mask given: pass --mask MASK.png");
     const std::vector<m::Dot> dots = load_dots(dots_path);
     const m::Mask mask = load_mask(mask_path);
-    Object o;
-    o.add("dots_file", json_string(dots_path))
-        .add("mask", json_string(mask_path))
-        .add("block", json_int(block))
-        .add("dots_listed", json_size(dots.size()));
-    std::printf("%s\n", evenness_fields(m::evenness(dots, mask, block), &o).c_str());
+    Json o;
+    o["dots_file"] = dots_path;
+    o["mask"] = mask_path;
+    o["block"] = block;
+    o["dots_listed"] = dots.size();
+    add_evenness(m::evenness(dots, mask, block), &o);
+    stipple::cli::print_json(o);
     return 0;
 }
 
 // Measures consecutive pairs of `frames` (each must have dots and a mask); a pair never spans
 // a gap in the numbering.
 struct CoherenceJson {
-    std::string pairs;    // JSON array
-    std::string summary;  // JSON object
+    Json pairs = Json::array();
+    Json summary;
 };
 
 // Removes the silhouette line pixels of `lines` (a --tone 0 frame with silhouettes) from `mask`.
@@ -335,7 +279,7 @@ CoherenceJson coherence_json(const std::string& dir, const std::vector<long>& fr
                              const std::string& contours = std::string()) {
     std::vector<m::FramePair> pairs;
     std::vector<long> pair_start;
-    std::string list;
+    Json list = Json::array();
     std::vector<m::Dot> before, after;
     m::Mask mask_before, mask_after;
     std::vector<float> dist_before, dist_after;
@@ -355,35 +299,26 @@ CoherenceJson coherence_json(const std::string& dir, const std::vector<long>& fr
                 m::frame_pair(before, mask_before, dist_before, after, mask_after, dist_after);
             pairs.push_back(p);
             pair_start.push_back(previous);
-            list += (list.empty() ? "" : ", ") +
-                    pair_json(previous, f, before.size(), after.size(), p);
+            list.push_back(pair_json(previous, f, before.size(), after.size(), p));
         }
         before.swap(after);
         mask_before = std::move(mask_after);
         dist_before.swap(dist_after);
         previous = f;
     }
-    return {"[" + list + "]", summary_json(m::summarize(pairs), pair_start)};
+    return {list, summary_json(m::summarize(pairs), pair_start)};
 }
 
-int coherence(stipple::cli::Args& args) {
-    std::string dir, contours, a;
+int coherence(int argc, char** argv) {
+    std::string dir, contours;
     long from = -1, to = -1;
-    while (args.next(&a)) {
-        if (a == "--contours") {
-            contours = args.value(a);
-        } else if (a == "--from") {
-            from = frame_number(args, a);
-        } else if (a == "--to") {
-            to = frame_number(args, a);
-        } else if (!a.empty() && a[0] == '-') {
-            die("coherence: unknown option '" + a + "' (see coherence --help)");
-        } else if (dir.empty()) {
-            dir = a;
-        } else {
-            die("coherence: more than one directory given ('" + dir + "', '" + a + "')");
-        }
-    }
+    stipple::cli::Parser p("stipple-measure", kCoherenceUsage);
+    p.command("coherence")
+        .positional("directory", &dir)
+        .text("--contours", &contours)
+        .integer("--from", 0, kMaxFrameNumber, &from)
+        .integer("--to", 0, kMaxFrameNumber, &to);
+    p.parse(argc, argv, 2);
     if (dir.empty()) die("coherence: no directory given (see coherence --help)");
     check_dir(dir);
     if (from < 0) {
@@ -404,26 +339,24 @@ int coherence(stipple::cli::Args& args) {
     if (frames.size() < 2) die("coherence needs at least two consecutive dots files in '" + dir + "'");
     if (!contours.empty()) check_dir(contours);
     const CoherenceJson c = coherence_json(dir, frames, contours);
-    std::printf("{\"dir\": %s, \"from\": %ld, \"to\": %ld, \"pairs\": %s, \"summary\": %s}\n",
-                json_string(dir).c_str(), frames.front(), frames.back(), c.pairs.c_str(),
-                c.summary.c_str());
+    Json o;
+    o["dir"] = dir;
+    o["from"] = frames.front();
+    o["to"] = frames.back();
+    o["pairs"] = c.pairs;
+    o["summary"] = c.summary;
+    stipple::cli::print_json(o);
     return 0;
 }
 
-int frames_command(stipple::cli::Args& args) {
-    std::string dir, a;
-    while (args.next(&a)) {
-        if (!a.empty() && a[0] == '-') {
-            die("frames: unknown option '" + a + "' (see frames --help)");
-        } else if (dir.empty()) {
-            dir = a;
-        } else {
-            die("frames: more than one directory given ('" + dir + "', '" + a + "')");
-        }
-    }
+int frames_command(int argc, char** argv) {
+    std::string dir;
+    stipple::cli::Parser p("stipple-measure", kFramesUsage);
+    p.command("frames").positional("directory", &dir);
+    p.parse(argc, argv, 2);
     if (dir.empty()) die("frames: no directory given (see frames --help)");
     check_dir(dir);
-    std::string list;
+    Json list = Json::array();
     std::vector<long> with_dots;
     double tone_sum = 0, tone_min = 0, tone_max = 0;
     size_t measured = 0;
@@ -442,37 +375,40 @@ int frames_command(stipple::cli::Args& args) {
         tone_min = measured ? std::min(tone_min, t) : t;
         tone_max = measured ? std::max(tone_max, t) : t;
         ++measured;
-        Object o;
-        o.add("frame", json_int(f)).add("tone", json_number(t)).add("mask_pixels",
-                                                                    json_size(pixels));
+        Json o;
+        o["frame"] = f;
+        o["tone"] = number(t);
+        o["mask_pixels"] = pixels;
         const std::string dots_path = numbered(dir, "dots", f, "csv");
         if (file_exists(dots_path)) {
-            Object e;
-            o.add("evenness", evenness_fields(m::evenness(load_dots(dots_path), mask), &e));
+            Json e;
+            add_evenness(m::evenness(load_dots(dots_path), mask), &e);
+            o["evenness"] = e;
             with_dots.push_back(f);
         }
-        list += (list.empty() ? "" : ", ") + o.str();
+        list.push_back(o);
     }
     if (measured == 0) die("no frame_NNNN.png with a mask_NNNN.png in '" + dir + "'");
-    Object summary;
-    summary.add("frames", json_size(measured))
-        .add("mean_tone", json_number(tone_sum / double(measured)))
-        .add("min_tone", json_number(tone_min))
-        .add("max_tone", json_number(tone_max));
+    Json summary;
+    summary["frames"] = measured;
+    summary["mean_tone"] = number(tone_sum / double(measured));
+    summary["min_tone"] = number(tone_min);
+    summary["max_tone"] = number(tone_max);
     // Coherence over runs of consecutive frames with dots (pairs never span a gap).
     bool has_pair = false;
     for (size_t i = 1; i < with_dots.size(); ++i) has_pair |= with_dots[i] == with_dots[i - 1] + 1;
-    summary.add("coherence", has_pair ? coherence_json(dir, with_dots).summary : "null");
-    std::printf("{\"dir\": %s, \"frames\": [%s], \"summary\": %s}\n", json_string(dir).c_str(),
-                list.c_str(), summary.str().c_str());
+    summary["coherence"] = has_pair ? coherence_json(dir, with_dots).summary : Json();
+    Json out;
+    out["dir"] = dir;
+    out["frames"] = list;
+    out["summary"] = summary;
+    stipple::cli::print_json(out);
     return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    stipple::cli::Args args{"stipple-measure", argc, argv};
-    g_args = &args;
     if (argc < 2) die("no command given (see --help)");
     const std::string command = argv[1];
     if (command == "-h" || command == "--help") {
@@ -481,21 +417,13 @@ int main(int argc, char** argv) {
     }
     struct Command {
         const char* name;
-        const char* usage;
-        int (*run)(stipple::cli::Args&);
+        int (*run)(int, char**);
     };
-    const Command commands[] = {{"tone", kToneUsage, tone},
-                                {"evenness", kEvennessUsage, evenness},
-                                {"coherence", kCoherenceUsage, coherence},
-                                {"frames", kFramesUsage, frames_command}};
-    for (const Command& c : commands) {
-        if (command != c.name) continue;
-        if (wants_help(argc, argv)) {
-            std::fputs(c.usage, stdout);
-            return 0;
-        }
-        args.at = 1;
-        return c.run(args);
-    }
+    const Command commands[] = {{"tone", tone},
+                                {"evenness", evenness},
+                                {"coherence", coherence},
+                                {"frames", frames_command}};
+    for (const Command& c : commands)
+        if (command == c.name) return c.run(argc, argv);
     die("unknown command '" + command + "' (see --help)");
 }

@@ -14,35 +14,77 @@
 #include "platform/headless_context.h"
 #include "runtime/asset.h"
 #include "runtime/frame_pipeline.h"
-#include "tools/cli_args.h"
+#include "tools/cli_options.h"
 #include "tools/image_write.h"
+#include "tools/json_line.h"
 
 namespace {
 
-const char* kUsage =
+// Frame-setting defaults and ranges in the help text come from the one table
+// (runtime/frame_config.h) and the resolved zero config, never from literals here.
+const stipple::FrameSettings& kLimits = stipple::kFrameSettings;
+const stipple::FrameConfig kDefaults = stipple::default_frame_config();
+
+std::string g(double v) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%g", v);
+    return text;
+}
+
+std::string range(const stipple::Setting<float>& s) {
+    return "in [" + g(s.min) + ", " + g(s.max) + "]";
+}
+
+unsigned rgb_of(const float* c) {
+    unsigned rgb = 0;
+    for (int k = 0; k < 3; ++k) rgb |= unsigned(std::lround(c[k] * 255.0f)) << (16 - 8 * k);
+    return rgb;
+}
+
+std::string background_default() {
+    char text[8];
+    std::snprintf(text, sizeof(text), "%06x", rgb_of(kDefaults.background));
+    return text;
+}
+
+const std::string kUsage =
     "usage: stipple-play ASSET.stip --out DIR [options]\n"
     "  --out DIR               where frame_NNNN.png and anim.png go (created if missing)\n"
     "  --clip NAME|INDEX       animation clip (default 0; the rest pose if the asset has none)\n"
     "  --blend CLIP2:W         layer a second clip with weight W in [0,1] (same clock)\n"
-    "  --crossfade CLIP2:S     fade from --clip to CLIP2 over S seconds, starting at --time\n"
+    "  --crossfade CLIP2:S     fade from --clip to CLIP2 over S in [0.001, 10000] seconds,\n"
+    "                          starting at --time (default: no second clip)\n"
     "  --skinning lbs|dqs      linear blend (default) or dual-quaternion skinning\n"
-    "  --frames N              frames to render (default 30, max 100000)\n"
-    "  --fps F                 frames per second of animation time (default 30)\n"
-    "  --time T0               start time in seconds (default 0); clips loop\n"
-    "  --size WxH              image size (default 640x480, max 8192x8192)\n"
+    "  --frames N              frames to render (default 30, in [1, 100000])\n"
+    "  --fps F                 frames per second of animation time (default 30, in [0.001, 1000])\n"
+    "  --time T0               start time in seconds (default 0, |T0| <= 1e6); clips loop\n"
+    "  --size WxH              image size (default " + std::to_string(kDefaults.width) + "x" +
+    std::to_string(kDefaults.height) + ", " + std::to_string(kLimits.width.min) +
+    " <= W, H <= " + std::to_string(kLimits.width.max) + ")\n"
     "  --zoom Z                1 = every pose of the played clip(s) fits the view (no clip:\n"
-    "                          the rest pose), 2 = twice as large (default 1)\n"
-    "  --zoom-to Z2            zoom from Z to Z2 (geometrically) over the frames\n"
-    "  --yaw DEG, --pitch DEG  camera orbit (default 0, 0: looking down -Z); pitch in [-90, 90]\n"
-    "  --tone T                constant target tone in [0,1] instead of lighting\n"
-    "  --point-size PX         maximum stipple diameter (default 3, in [0.5, 32])\n"
-    "  --background RRGGBB     background colour (default ffffff)\n"
+    "                          the rest pose), 2 = twice as large (default " + g(kDefaults.zoom) +
+    ", " + range(kLimits.zoom) + ")\n"
+    "  --zoom-to Z2            zoom from Z to Z2 (geometrically) over the frames (default: no\n"
+    "                          zoom change; " + range(kLimits.zoom) + ")\n"
+    "  --yaw DEG, --pitch DEG  camera orbit (default " + g(kDefaults.yaw_degrees) + ", " +
+    g(kDefaults.pitch_degrees) + ": looking down -Z);\n                          yaw " +
+    range(kLimits.yaw_degrees) + ", pitch " + range(kLimits.pitch_degrees) + "\n"
+    "  --tone T                constant target tone " + range(kLimits.constant_tone) +
+    " instead of lighting (default:\n"
+    "                          lighting)\n"
+    "  --point-size PX         maximum stipple diameter (default " + g(kDefaults.max_point_size) +
+    ", " + range(kLimits.max_point_size) + ")\n"
+    "  --background RRGGBB     background colour (default " + background_default() + ")\n"
     "  --no-relevance-update   keep rest-pose relevance radii (thesis Alg. 6.3 without 6.4)\n"
-    "  --dark-tone T           darkest tone lighting asks for, thesis §8.4 (default 0.6)\n"
+    "  --dark-tone T           darkest tone lighting asks for, thesis §8.4 (default " +
+    g(kDefaults.dark_tone) + ", " + range(kLimits.dark_tone) + ")\n"
     "  --refinement-budget N   extra points per frame where the baked hierarchy runs out\n"
-    "                          (close-ups, stretch; default 262144, 0 = off, max 4194304)\n"
+    "                          (close-ups, stretch; default " +
+    std::to_string(kDefaults.refinement_budget) + ", 0 = off, max " +
+    std::to_string(kLimits.refinement_budget.max) + ")\n"
     "  --no-silhouettes        do not draw silhouette lines\n"
-    "  --line-width PX         silhouette line width (default 1, in [0.5, 16])\n"
+    "  --line-width PX         silhouette line width (default " + g(kDefaults.line_width) + ", " +
+    range(kLimits.line_width) + ")\n"
     "  --dots-out              also write dots_NNNN.csv (id,x,y,size per drawn dot)\n"
     "  --mask-out              also write mask_NNNN.png: white where the mesh covers the\n"
     "                          pixel, black elsewhere (the object mask of stipple-measure)\n"
@@ -58,115 +100,100 @@ struct Options {
     double mix_amount = 0;  // blend weight, or crossfade seconds
     bool dqs = false;
     long frames = 30;
-    double fps = 30, time0 = 0, zoom = 1, yaw = 0, pitch = 0, tone = -1, point_size = 3;
-    double dark_tone = 0.6;
+    double fps = 30, time0 = 0;
+    // Frame settings start at the resolved zero config (runtime/frame_config.h).
+    double zoom = kDefaults.zoom, yaw = kDefaults.yaw_degrees, pitch = kDefaults.pitch_degrees;
+    double tone = kDefaults.constant_tone, point_size = kDefaults.max_point_size;
+    double dark_tone = kDefaults.dark_tone;
     double zoom_to = 0;  // > 0: zoom moves geometrically from `zoom` to this over the frames
-    long refinement_budget = 1L << 18;
-    int width = 640, height = 480;
-    float background[3] = {1, 1, 1};
-    double line_width = 1;
-    bool silhouettes = true;
-    bool relevance_update = true, dots_out = false, png = true, apng = true, stats = false;
+    long refinement_budget = long(kDefaults.refinement_budget);
+    int width = kDefaults.width, height = kDefaults.height;
+    float background[3] = {kDefaults.background[0], kDefaults.background[1],
+                           kDefaults.background[2]};
+    double line_width = kDefaults.line_width;
+    bool silhouettes = kDefaults.silhouettes;
+    bool relevance_update = kDefaults.relevance_update;
+    bool dots_out = false, png = true, apng = true, stats = false;
     bool mask_out = false;
 };
 
-stipple::cli::Args* g_args = nullptr;  // for die() outside parse()
+stipple::cli::Parser g_parser("stipple-play", kUsage.c_str());
 
-[[noreturn]] void die(const std::string& message) {
-    g_args->die(message);
+[[noreturn]] void die(const std::string& message) { g_parser.fail(message); }
+
+// --blend CLIP2:W and --crossfade CLIP2:S.
+void parse_mix(const std::string& option, const std::string& v, Options* o) {
+    const bool blend = option == "--blend";
+    const size_t colon = v.rfind(':');
+    if (colon == std::string::npos || colon == 0)
+        die(option + " takes CLIP:" + (blend ? "WEIGHT" : "SECONDS") + ", got '" + v + "'");
+    o->second_clip = v.substr(0, colon);
+    o->mix = blend ? Options::Mix::blend : Options::Mix::crossfade;
+    o->mix_amount = blend ? g_parser.number_value(option + " weight", v.substr(colon + 1), 0, 1)
+                          : g_parser.number_value(option + " seconds", v.substr(colon + 1),
+                                                  0.001, 1e4);
 }
 
-Options parse(stipple::cli::Args& args) {
+// What is played and how the camera sees it.
+void add_view_options(stipple::cli::Parser& p, Options& o) {
+    p.text("--clip", &o.clip)
+        .custom("--blend", [&o](const std::string& n, const std::string& v) { parse_mix(n, v, &o); })
+        .custom("--crossfade",
+                [&o](const std::string& n, const std::string& v) { parse_mix(n, v, &o); })
+        .choice("--skinning", {std::pair<const char*, bool>{"lbs", false}, {"dqs", true}}, &o.dqs)
+        .integer("--frames", 1, 100000, &o.frames)
+        .number("--fps", 0.001, 1000, &o.fps)
+        .number("--time", -1e6, 1e6, &o.time0)
+        .custom("--size",
+                [&o](const std::string& n, const std::string& v) {
+                    const stipple::Setting<int>& w = kLimits.width;
+                    if (!stipple::cli::parse_size(v, w.min, w.max, &o.width, &o.height))
+                        g_parser.bad_value(n, "WxH with " + std::to_string(w.min) +
+                                                  " <= W, H <= " + std::to_string(w.max), v);
+                })
+        .number("--zoom", kLimits.zoom.min, kLimits.zoom.max, &o.zoom)
+        .number("--zoom-to", kLimits.zoom.min, kLimits.zoom.max, &o.zoom_to)
+        .number("--yaw", kLimits.yaw_degrees.min, kLimits.yaw_degrees.max, &o.yaw)
+        .number("--pitch", kLimits.pitch_degrees.min, kLimits.pitch_degrees.max, &o.pitch);
+}
+
+// How the frame is drawn and what is written.
+void add_render_options(stipple::cli::Parser& p, Options& o) {
+    p.number("--tone", kLimits.constant_tone.min, kLimits.constant_tone.max, &o.tone)
+        .number("--point-size", kLimits.max_point_size.min, kLimits.max_point_size.max,
+                &o.point_size)
+        .custom("--background",
+                [&o](const std::string& n, const std::string& v) {
+                    long long rgb = 0;
+                    if (v.size() != 6 || v.find_first_not_of("0123456789abcdefABCDEF") !=
+                                             std::string::npos)
+                        g_parser.bad_value(n, "RRGGBB hex", v);
+                    rgb = std::stoll(v, nullptr, 16);
+                    for (int k = 0; k < 3; ++k)
+                        o.background[k] = float((rgb >> (16 - 8 * k)) & 0xFF) / 255;
+                })
+        .flag("--no-relevance-update", &o.relevance_update, false)
+        .number("--dark-tone", kLimits.dark_tone.min, kLimits.dark_tone.max, &o.dark_tone)
+        .integer("--refinement-budget", kLimits.refinement_budget.min,
+                 kLimits.refinement_budget.max, &o.refinement_budget)
+        .flag("--no-silhouettes", &o.silhouettes, false)
+        .number("--line-width", kLimits.line_width.min, kLimits.line_width.max, &o.line_width)
+        .flag("--dots-out", &o.dots_out)
+        .flag("--mask-out", &o.mask_out)
+        .flag("--no-png", &o.png, false)
+        .flag("--no-apng", &o.apng, false)
+        .flag("--stats", &o.stats)
+        .choice("--backend",
+                {std::pair<const char*, std::string>{"egl", "egl"}, {"osmesa", "osmesa"}},
+                &o.backend);
+}
+
+Options parse(int argc, char** argv) {
     Options o;
-    std::string a;
-    while (args.next(&a)) {
-        auto value = [&]() { return args.value(a); };
-        auto parse_double = [&](const std::string& option, const char* text, double lo, double hi) {
-            return args.number(option, text, lo, hi);
-        };
-        if (a == "-h" || a == "--help") {
-            std::fputs(kUsage, stdout);
-            std::exit(0);
-        } else if (a == "--out") {
-            o.out = value();
-        } else if (a == "--clip") {
-            o.clip = value();
-        } else if (a == "--blend" || a == "--crossfade") {
-            std::string v = value();
-            size_t colon = v.rfind(':');
-            if (colon == std::string::npos || colon == 0)
-                die(a + " takes CLIP:" + (a == "--blend" ? "WEIGHT" : "SECONDS") + ", got '" + v +
-                    "'");
-            o.second_clip = v.substr(0, colon);
-            o.mix = a == "--blend" ? Options::Mix::blend : Options::Mix::crossfade;
-            o.mix_amount = a == "--blend"
-                               ? parse_double(a + " weight", v.c_str() + colon + 1, 0, 1)
-                               : parse_double(a + " seconds", v.c_str() + colon + 1, 0.001, 1e4);
-        } else if (a == "--skinning") {
-            std::string v = value();
-            if (v != "lbs" && v != "dqs") die("--skinning must be lbs or dqs, got '" + v + "'");
-            o.dqs = v == "dqs";
-        } else if (a == "--frames") {
-            o.frames = long(parse_double(a, value(), 1, 100000));
-        } else if (a == "--fps") {
-            o.fps = parse_double(a, value(), 0.001, 1000);
-        } else if (a == "--time") {
-            o.time0 = parse_double(a, value(), -1e6, 1e6);
-        } else if (a == "--size") {
-            const char* s = value();
-            if (std::sscanf(s, "%dx%d", &o.width, &o.height) != 2 || o.width < 16 ||
-                o.height < 16 || o.width > 8192 || o.height > 8192)
-                die(std::string("--size must be WxH with 16 <= W, H <= 8192, got '") + s + "'");
-        } else if (a == "--zoom") {
-            o.zoom = parse_double(a, value(), 0.01, 1000);
-        } else if (a == "--zoom-to") {
-            o.zoom_to = parse_double(a, value(), 0.01, 1000);
-        } else if (a == "--yaw") {
-            o.yaw = parse_double(a, value(), -3600, 3600);
-        } else if (a == "--pitch") {
-            o.pitch = parse_double(a, value(), -90, 90);
-        } else if (a == "--tone") {
-            o.tone = parse_double(a, value(), 0, 1);
-        } else if (a == "--point-size") {
-            o.point_size = parse_double(a, value(), 0.5, 32);
-        } else if (a == "--background") {
-            const char* s = value();
-            unsigned rgb = 0;
-            if (std::strlen(s) != 6 || std::sscanf(s, "%6x", &rgb) != 1)
-                die(std::string("--background must be RRGGBB hex, got '") + s + "'");
-            for (int k = 0; k < 3; ++k) o.background[k] = float((rgb >> (16 - 8 * k)) & 0xFF) / 255;
-        } else if (a == "--no-relevance-update") {
-            o.relevance_update = false;
-        } else if (a == "--dark-tone") {
-            o.dark_tone = parse_double(a, value(), 0, 1);
-        } else if (a == "--refinement-budget") {
-            o.refinement_budget = long(parse_double(a, value(), 0, 4194304));
-        } else if (a == "--no-silhouettes") {
-            o.silhouettes = false;
-        } else if (a == "--line-width") {
-            o.line_width = parse_double(a, value(), 0.5, 16);
-        } else if (a == "--dots-out") {
-            o.dots_out = true;
-        } else if (a == "--mask-out") {
-            o.mask_out = true;
-        } else if (a == "--no-png") {
-            o.png = false;
-        } else if (a == "--no-apng") {
-            o.apng = false;
-        } else if (a == "--stats") {
-            o.stats = true;
-        } else if (a == "--backend") {
-            o.backend = value();
-            if (o.backend != "egl" && o.backend != "osmesa")
-                die("--backend must be egl or osmesa, got '" + o.backend + "'");
-        } else if (!a.empty() && a[0] == '-') {
-            die("unknown option '" + a + "' (see --help)");
-        } else if (o.asset.empty()) {
-            o.asset = a;
-        } else {
-            die("more than one asset given ('" + o.asset + "', '" + a + "')");
-        }
-    }
+    g_parser.positional("asset", &o.asset).text("--out", &o.out);
+    add_view_options(g_parser, o);
+    add_render_options(g_parser, o);
+    g_parser.parse(argc, argv);
     if (o.asset.empty()) die("no asset given (see --help)");
     if (o.out.empty()) die("no output directory: pass --out DIR");
     return o;
@@ -205,50 +232,41 @@ bool write_mask(const float* depth, int w, int h, uint8_t* rgba, const std::stri
     return stipple::image::write_png(path.c_str(), w, h, rgba, /*bottom_up=*/true, error);
 }
 
-}  // namespace
+// The played clip (-1: the rest pose) and the second clip of --blend / --crossfade (-1: none).
+struct Clips {
+    int clip = -1, second = -1;
+};
 
-int main(int argc, char** argv) {
-    stipple::cli::Args args{"stipple-play", argc, argv};
-    g_args = &args;
-    Options o = parse(args);
-    stipple::Asset asset;
-    stipple::LoadStatus st = stipple::load_asset_file(o.asset.c_str(), &asset);
-    if (!st.ok()) die(o.asset + ": " + st.message);
-    int clip = asset.clip_count > 0 ? 0 : -1;
+Clips find_clips(const stipple::Asset& asset, const Options& o) {
+    Clips c;
+    c.clip = asset.clip_count > 0 ? 0 : -1;
     if (!o.clip.empty()) {
-        clip = stipple::find_clip(asset, o.clip.c_str());
-        if (clip < 0) die("no clip '" + o.clip + "' in " + o.asset);
+        c.clip = stipple::find_clip(asset, o.clip.c_str());
+        if (c.clip < 0) die("no clip '" + o.clip + "' in " + o.asset);
     }
-    int second = -1;
     if (o.mix != Options::Mix::none) {
-        second = stipple::find_clip(asset, o.second_clip.c_str());
-        if (second < 0) die("no clip '" + o.second_clip + "' in " + o.asset);
+        c.second = stipple::find_clip(asset, o.second_clip.c_str());
+        if (c.second < 0) die("no clip '" + o.second_clip + "' in " + o.asset);
     }
-    mkdir(o.out.c_str(), 0755);
+    return c;
+}
+
+void make_output_dir(const std::string& dir) {
+    mkdir(dir.c_str(), 0755);
     struct stat info;
-    if (stat(o.out.c_str(), &info) != 0 || !S_ISDIR(info.st_mode))
-        die("cannot create output directory '" + o.out + "'");
+    if (stat(dir.c_str(), &info) != 0 || !S_ISDIR(info.st_mode))
+        die("cannot create output directory '" + dir + "'");
+}
 
-    stipple::platform::HeadlessConfig hc;
-    hc.width = o.width;
-    hc.height = o.height;
-    hc.allow_egl = o.backend != "osmesa";
-    hc.allow_osmesa = o.backend != "egl";
-    stipple::platform::HeadlessContext context;
-    std::string error;
-    if (!stipple::platform::create_headless_context(hc, &context, &error)) die(error);
-    stipple::GlApi gl;
-    if (const char* missing = stipple::load_gl_api(stipple::platform::proc_loader(context), &gl))
-        die(std::string("GL function ") + missing + " unavailable");
-
-    stipple::PipelineConfig pc;
+stipple::FrameConfig pipeline_config(const Options& o, const Clips& clips) {
+    stipple::FrameConfig pc;
     pc.width = o.width;
     pc.height = o.height;
     pc.zoom = float(o.zoom);
     pc.yaw_degrees = float(o.yaw);
     pc.pitch_degrees = float(o.pitch);
-    pc.frame_clip = clip;  // zoom 1 frames every pose of the clips played
-    pc.frame_blend_clip = second;
+    pc.frame_clip = clips.clip;  // zoom 1 frames every pose of the clips played
+    pc.frame_blend_clip = clips.second;
     pc.relevance_update = o.relevance_update;
     pc.dark_tone = float(o.dark_tone);
     pc.refinement_budget = uint32_t(o.refinement_budget);
@@ -259,87 +277,159 @@ int main(int argc, char** argv) {
     pc.skinning = o.dqs ? stipple::anim::Skinning::dqs : stipple::anim::Skinning::lbs;
     pc.line_width = float(o.line_width);
     std::memcpy(pc.background, o.background, sizeof(pc.background));
-    std::unique_ptr<stipple::Pipeline> pipeline(new stipple::Pipeline());
-    char message[256] = {};
-    if (!stipple::pipeline_init(pipeline.get(), asset, gl, pc, message, sizeof(message)))
-        die(std::string("renderer: ") + message);
+    return pc;
+}
 
-    const size_t pixels = size_t(o.width) * size_t(o.height);
-    std::unique_ptr<uint8_t[]> rgba(new uint8_t[pixels * 4]);
+// The frame buffers and the animated PNG the frames go to.
+struct Outputs {
+    std::unique_ptr<uint8_t[]> rgba;
     std::unique_ptr<float[]> depth_scratch, depth;
     std::unique_ptr<stipple::VisibleDot[]> dot_scratch;
     std::unique_ptr<uint8_t[]> mask_rgba;
-    if (o.dots_out || o.mask_out) {
-        depth_scratch.reset(new float[pixels * 4]);
-        depth.reset(new float[pixels]);
-        if (o.dots_out) dot_scratch.reset(new stipple::VisibleDot[pipeline->point_capacity]);
-    }
-    if (o.mask_out) mask_rgba.reset(new uint8_t[pixels * 4]);
     stipple::image::ApngWriter apng;
+};
+
+void open_outputs(const Options& o, const stipple::Pipeline& pipeline, Outputs* out) {
+    const size_t pixels = size_t(o.width) * size_t(o.height);
+    out->rgba.reset(new uint8_t[pixels * 4]);
+    if (o.dots_out || o.mask_out) {
+        out->depth_scratch.reset(new float[pixels * 4]);
+        out->depth.reset(new float[pixels]);
+        if (o.dots_out) out->dot_scratch.reset(new stipple::VisibleDot[pipeline.point_capacity]);
+    }
+    if (o.mask_out) out->mask_rgba.reset(new uint8_t[pixels * 4]);
     int fps_num = int(std::lround(o.fps * 1000)), fps_den = 1000;
     while (fps_num > 65535) fps_num /= 10, fps_den /= 10;
-    if (o.apng && !apng.open((o.out + "/anim.png").c_str(), std::max(fps_num, 1), fps_den, &error))
+    std::string error;
+    if (o.apng &&
+        !out->apng.open((o.out + "/anim.png").c_str(), std::max(fps_num, 1), fps_den, &error))
         die(error);
+}
 
+// Writes frame f (already read back into out->rgba) as PNG, APNG frame, dots and mask.
+void write_frame(const Options& o, long f, stipple::Pipeline* pipeline, Outputs* out) {
+    std::string error;
+    if (o.png && !stipple::image::write_png(frame_path(o, "frame", f, "png").c_str(), o.width,
+                                            o.height, out->rgba.get(), true, &error))
+        die(error);
+    if (o.apng && !out->apng.add_frame(o.width, o.height, out->rgba.get(), true, &error))
+        die(error);
+    if (o.dots_out || o.mask_out)
+        stipple::renderer_read_depth(&pipeline->renderer, out->depth_scratch.get(),
+                                     out->depth.get());
+    if (o.dots_out && !write_dots(*pipeline, out->depth.get(), out->dot_scratch.get(),
+                                  frame_path(o, "dots", f, "csv")))
+        die("cannot write dots file in '" + o.out + "'");
+    if (o.mask_out && !write_mask(out->depth.get(), o.width, o.height, out->mask_rgba.get(),
+                                  frame_path(o, "mask", f, "png"), &error))
+        die(error);
+}
+
+struct Totals {
     stipple::StageTimes times;
     double frame_ms = 0, drawn = 0, refined = 0, budget_scale = 1;
-    for (long f = 0; f < o.frames; ++f) {
-        // Clips loop (the sampler wraps the time); a crossfade starts CLIP2 at its time 0.
-        const double elapsed = double(f) / o.fps;
-        stipple::AnimationState state;
-        state.clip = clip;
-        state.time = float(o.time0 + elapsed);
-        state.blend_clip = second;
-        state.blend_time = float(o.mix == Options::Mix::crossfade ? elapsed : o.time0 + elapsed);
-        state.blend_weight =
-            float(o.mix == Options::Mix::crossfade ? std::min(elapsed / o.mix_amount, 1.0)
-                                                   : o.mix_amount);
-        auto start = std::chrono::steady_clock::now();
-        if (o.zoom_to > 0 && o.frames > 1) {
-            stipple::PipelineConfig view = pipeline->config;
-            view.zoom = float(o.zoom * std::pow(o.zoom_to / o.zoom, double(f) / double(o.frames - 1)));
-            stipple::pipeline_set_view(pipeline.get(), view);
-        }
-        stipple::pipeline_frame(pipeline.get(), state, &times);
-        auto readback_start = std::chrono::steady_clock::now();
-        stipple::renderer_read_color(&pipeline->renderer, rgba.get());
-        auto end = std::chrono::steady_clock::now();
-        times.readback += std::chrono::duration<double, std::milli>(end - readback_start).count();
-        frame_ms += std::chrono::duration<double, std::milli>(end - start).count();
-        drawn += pipeline->points_drawn;
-        refined += pipeline->refined_count;
-        budget_scale = std::min(budget_scale, double(pipeline->refinement_stats.budget_scale));
-        if (o.png && !stipple::image::write_png(frame_path(o, "frame", f, "png").c_str(), o.width,
-                                                o.height, rgba.get(), true, &error))
-            die(error);
-        if (o.apng && !apng.add_frame(o.width, o.height, rgba.get(), true, &error)) die(error);
-        if (o.dots_out || o.mask_out)
-            stipple::renderer_read_depth(&pipeline->renderer, depth_scratch.get(), depth.get());
-        if (o.dots_out &&
-            !write_dots(*pipeline, depth.get(), dot_scratch.get(), frame_path(o, "dots", f, "csv")))
-            die("cannot write dots file in '" + o.out + "'");
-        if (o.mask_out && !write_mask(depth.get(), o.width, o.height, mask_rgba.get(),
-                                      frame_path(o, "mask", f, "png"), &error))
-            die(error);
-    }
-    if (o.apng && !apng.finish(&error)) die(error);
+};
 
-    if (o.stats) {
-        const double n = double(o.frames);
-        std::printf(
-            "{\"asset\": \"%s\", \"backend\": \"%s\", \"renderer\": \"%s\", \"clip\": \"%s\", "
-            "\"frames\": %ld, \"width\": %d, \"height\": %d, \"points_total\": %u, "
-            "\"points_drawn\": %.1f, \"points_refined\": %.1f, \"refinement_budget_scale\": %.3f, "
-            "\"ms_per_frame\": %.3f, \"ms_per_stage\": {\"sample\": %.3f, "
-            "\"skin\": %.3f, \"place\": %.3f, \"relevance\": %.3f, \"refine\": %.3f, \"size\": %.3f, "
-            "\"silhouette\": %.3f, \"draw\": %.3f, \"readback\": %.3f}}\n",
-            o.asset.c_str(), stipple::platform::backend_name(context.backend),
-            context.renderer.c_str(), clip >= 0 ? asset.clips[clip].name : "(rest pose)", o.frames,
-            o.width, o.height, asset.points.point_count, drawn / n, refined / n, budget_scale,
-            frame_ms / n, times.sample / n, times.skin / n, times.place / n, times.relevance / n,
-            times.refine / n, times.size / n,
-            times.silhouette / n, times.draw / n, times.readback / n);
+// Draws frame f and reads its colour back into out->rgba.
+void render_frame(const Options& o, const Clips& clips, long f, stipple::Pipeline* pipeline,
+                  Outputs* out, Totals* totals) {
+    // Clips loop (the sampler wraps the time); a crossfade starts CLIP2 at its time 0.
+    const double elapsed = double(f) / o.fps;
+    const bool crossfade = o.mix == Options::Mix::crossfade;
+    stipple::AnimationState state;
+    state.clip = clips.clip;
+    state.time = float(o.time0 + elapsed);
+    state.blend_clip = clips.second;
+    state.blend_time = float(crossfade ? elapsed : o.time0 + elapsed);
+    state.blend_weight =
+        float(crossfade ? std::min(elapsed / o.mix_amount, 1.0) : o.mix_amount);
+    auto start = std::chrono::steady_clock::now();
+    if (o.zoom_to > 0 && o.frames > 1) {
+        stipple::FrameConfig view = pipeline->config;
+        view.zoom = float(o.zoom * std::pow(o.zoom_to / o.zoom, double(f) / double(o.frames - 1)));
+        const stipple::Status set = stipple::pipeline_set_view(pipeline, view);
+        if (!set.ok()) die(std::string("--zoom-to: ") + set.message);
     }
+    stipple::pipeline_frame(pipeline, state, &totals->times);
+    auto readback_start = std::chrono::steady_clock::now();
+    stipple::renderer_read_color(&pipeline->renderer, out->rgba.get());
+    auto end = std::chrono::steady_clock::now();
+    totals->times.readback +=
+        std::chrono::duration<double, std::milli>(end - readback_start).count();
+    totals->frame_ms += std::chrono::duration<double, std::milli>(end - start).count();
+    totals->drawn += pipeline->points_drawn;
+    totals->refined += pipeline->refined_count;
+    totals->budget_scale =
+        std::min(totals->budget_scale, double(pipeline->refinement_stats.budget_scale));
+}
+
+// --stats: one JSON object of counts and mean timings per frame.
+void print_stats(const Options& o, const stipple::Asset& asset, const Clips& clips,
+                 const stipple::platform::HeadlessContext& context, const Totals& t) {
+    using stipple::cli::fixed;
+    const double n = double(o.frames);
+    stipple::cli::Json j;
+    j["asset"] = o.asset;
+    j["backend"] = stipple::platform::backend_name(context.backend);
+    j["renderer"] = context.renderer;
+    j["clip"] = clips.clip >= 0 ? asset.clips[clips.clip].name : "(rest pose)";
+    j["frames"] = o.frames;
+    j["width"] = o.width;
+    j["height"] = o.height;
+    j["points_total"] = asset.points.point_count;
+    j["points_drawn"] = fixed(t.drawn / n, 1);
+    j["points_refined"] = fixed(t.refined / n, 1);
+    j["refinement_budget_scale"] = fixed(t.budget_scale, 3);
+    j["ms_per_frame"] = fixed(t.frame_ms / n, 3);
+    const std::pair<const char*, double> stages[] = {
+        {"sample", t.times.sample},         {"skin", t.times.skin}, {"place", t.times.place},
+        {"relevance", t.times.relevance},   {"refine", t.times.refine},
+        {"size", t.times.size},             {"silhouette", t.times.silhouette},
+        {"draw", t.times.draw},             {"readback", t.times.readback}};
+    stipple::cli::Json per_stage;
+    for (const auto& stage : stages) per_stage[stage.first] = fixed(stage.second / n, 3);
+    j["ms_per_stage"] = per_stage;
+    stipple::cli::print_json(j);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const Options o = parse(argc, argv);
+    stipple::Asset asset;
+    stipple::LoadStatus st = stipple::load_asset_file(o.asset.c_str(), &asset);
+    if (!st.ok()) die(o.asset + ": " + st.message);
+    const Clips clips = find_clips(asset, o);
+    make_output_dir(o.out);
+
+    stipple::platform::HeadlessConfig hc;
+    hc.width = o.width;
+    hc.height = o.height;
+    hc.allow_egl = o.backend != "osmesa";
+    hc.allow_osmesa = o.backend != "egl";
+    stipple::platform::HeadlessContext context;
+    std::string error;
+    const stipple::platform::ContextStatus created =
+        stipple::platform::create_headless_context(hc, &context);
+    if (!created.ok()) die(created.message);
+    stipple::GlApi gl;
+    const stipple::Status loaded = stipple::load_gl_api(stipple::platform::proc_loader(context), &gl);
+    if (!loaded.ok()) die(loaded.message);
+
+    const stipple::FrameConfig pc = pipeline_config(o, clips);
+    std::unique_ptr<stipple::Pipeline> pipeline(new stipple::Pipeline());
+    const stipple::Status init = stipple::pipeline_init(pipeline.get(), asset, gl, pc);
+    if (!init.ok()) die(std::string("renderer: ") + init.message);
+
+    Outputs out;
+    open_outputs(o, *pipeline, &out);
+    Totals totals;
+    for (long f = 0; f < o.frames; ++f) {
+        render_frame(o, clips, f, pipeline.get(), &out, &totals);
+        write_frame(o, f, pipeline.get(), &out);
+    }
+    if (o.apng && !out.apng.finish(&error)) die(error);
+    if (o.stats) print_stats(o, asset, clips, context, totals);
     stipple::pipeline_destroy(pipeline.get());
     stipple::platform::destroy_headless_context(&context);
     return 0;

@@ -9,21 +9,24 @@
 int main(int argc, char** argv) {
     if (argc != 2) return 2;
     stipple::platform::HeadlessContext context;
-    std::string error;
-    if (!stipple::platform::create_headless_context({}, &context, &error)) {
-        std::fprintf(stderr, "%s\n", error.c_str());
+    const stipple::platform::ContextStatus created =
+        stipple::platform::create_headless_context({}, &context);
+    if (!created.ok()) {
+        std::fprintf(stderr, "%s\n", created.message.c_str());
         return 1;
     }
     stipple_asset* asset = nullptr;
     stipple_player* player = nullptr;
     stipple_player_desc desc = {};
     desc.get_proc_address = stipple::platform::proc_loader(context);
-    if (stipple_asset_load_file(argv[1], &asset) != STIPPLE_OK ||
+    stipple_player_desc resolved;  // the zero description's defaults: the image size
+    if (stipple_player_desc_resolve(&desc, &resolved) != STIPPLE_OK ||
+        stipple_asset_load_file(argv[1], &asset) != STIPPLE_OK ||
         stipple_player_create(asset, &desc, &player) != STIPPLE_OK) {
         std::fprintf(stderr, "%s\n", stipple_last_error());
         return 1;
     }
-    std::vector<uint8_t> rgba(640 * 480 * 4);
+    std::vector<uint8_t> rgba(size_t(resolved.width) * size_t(resolved.height) * 4);
     stipple_player_draw(player, 0, 0.0f);
     stipple_player_read_rgba(player, rgba.data());
     long dark = 0;

@@ -1,0 +1,77 @@
+#include "runtime/frame_config.h"
+
+namespace stipple {
+
+namespace {
+
+// Zero means the setting's default.
+template <typename T>
+T or_default(T value, const Setting<T>& s) {
+    return value == T(0) ? s.fallback : value;
+}
+
+Status out_of_range(const char* field, double value, double min, double max) {
+    return make_status(StatusCode::invalid_argument, "%s %g outside [%g, %g]", field, value, min,
+                       max);
+}
+
+template <typename T>
+Status check(const char* field, T value, const Setting<T>& s) {
+    if (s.contains(value)) return {};
+    return out_of_range(field, double(value), double(s.min), double(s.max));
+}
+
+// The first field outside its range, or ok.
+Status check_limits(const FrameConfig& c) {
+    const FrameSettings& s = kFrameSettings;
+    const Status checks[] = {
+        check("width", c.width, s.width),
+        check("height", c.height, s.height),
+        check("zoom", c.zoom, s.zoom),
+        check("yaw_degrees", c.yaw_degrees, s.yaw_degrees),
+        check("pitch_degrees", c.pitch_degrees, s.pitch_degrees),
+        check("fov_degrees", c.fov_degrees, s.fov_degrees),
+        c.constant_tone == kLightingTone ? Status()
+                                         : check("constant_tone", c.constant_tone, s.constant_tone),
+        check("max_point_size", c.max_point_size, s.max_point_size),
+        check("smooth_slope", c.smooth_slope, s.smooth_slope),
+        check("line_width", c.line_width, s.line_width),
+        check("dark_tone", c.dark_tone, s.dark_tone),
+        check("refinement_budget", c.refinement_budget, s.refinement_budget),
+    };
+    for (const Status& st : checks)
+        if (!st.ok()) return st;
+    for (float channel : c.background)
+        if (!(channel >= 0.0f && channel <= 1.0f))
+            return out_of_range("background channel", double(channel), 0.0, 1.0);
+    return {};
+}
+
+}  // namespace
+
+Status resolve_frame_config(const FrameConfig& in, FrameConfig* out) {
+    const FrameSettings& s = kFrameSettings;
+    FrameConfig c = in;
+    c.width = or_default(c.width, s.width);
+    c.height = or_default(c.height, s.height);
+    c.zoom = or_default(c.zoom, s.zoom);
+    c.fov_degrees = or_default(c.fov_degrees, s.fov_degrees);
+    c.max_point_size = or_default(c.max_point_size, s.max_point_size);
+    c.smooth_slope = or_default(c.smooth_slope, s.smooth_slope);
+    c.line_width = or_default(c.line_width, s.line_width);
+    Status st = check_limits(c);
+    if (st.ok()) *out = c;
+    return st;
+}
+
+FrameConfig default_frame_config() {
+    FrameConfig zero;
+    zero.width = zero.height = 0;
+    zero.zoom = zero.fov_degrees = zero.max_point_size = zero.smooth_slope = zero.line_width = 0;
+    FrameConfig resolved;
+    // The table's defaults lie inside its own ranges, so this cannot fail.
+    if (!resolve_frame_config(zero, &resolved).ok()) return FrameConfig();
+    return resolved;
+}
+
+}  // namespace stipple

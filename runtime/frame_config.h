@@ -1,0 +1,85 @@
+// Frame settings: what a player draws (image size, camera, tone, budgets), with every
+// default and limit in one table, kFrameSettings (sokol's _sg_def habit). The C API
+// (stipple_player_create, stipple_player_desc_resolve), the C++ API (pipeline_init,
+// pipeline_set_view) and the CLIs all go through resolve_frame_config; the renderer's and the
+// size rule's parameters are filled from its result. No other file writes a default or a
+// limit of a frame setting.
+#pragma once
+#include <cstdint>
+
+#include "anim/anim.h"
+#include "runtime/status.h"
+
+namespace stipple {
+
+// Default and allowed range (inclusive) of one numeric frame setting.
+template <typename T>
+struct Setting {
+    T fallback;  // the default
+    T min, max;
+    constexpr bool contains(T v) const { return v >= min && v <= max; }  // false for NaN
+};
+
+// constant_tone's "no constant tone": Lambert lighting decides each point's tone.
+inline constexpr float kLightingTone = -1.0f;
+
+// The one table of frame-setting defaults and limits.
+struct FrameSettings {
+    Setting<int> width{640, 16, 16384};  // pixels
+    Setting<int> height{480, 16, 16384};
+    Setting<float> zoom{1.0f, 0.01f, 1000.0f};
+    Setting<float> yaw_degrees{0.0f, -3600.0f, 3600.0f};
+    Setting<float> pitch_degrees{0.0f, -90.0f, 90.0f};
+    Setting<float> fov_degrees{30.0f, 1.0f, 170.0f};
+    // kLightingTone (lighting decides the tone) by default; a constant tone is in [min, max].
+    Setting<float> constant_tone{kLightingTone, 0.0f, 1.0f};
+    Setting<float> max_point_size{3.0f, 0.5f, 32.0f};             // pixels
+    Setting<float> smooth_slope{2.0f, 1.01f, 16.0f};              // Alg. 3.2's smoothSlope, > 1
+    Setting<float> line_width{1.0f, 0.5f, 16.0f};                 // pixels
+    Setting<float> dark_tone{0.6f, 0.0f, 1.0f};                   // thesis §8.4
+    Setting<uint32_t> refinement_budget{1u << 18, 0u, 1u << 22};  // extra points per frame
+    float background[3] = {1.0f, 1.0f, 1.0f};  // white paper; each channel in [0, 1]
+};
+inline constexpr FrameSettings kFrameSettings{};
+
+// Everything about how a frame is drawn. Member initialisers are the table's defaults; in
+// addition, a zero width, height, zoom, fov_degrees, max_point_size, smooth_slope or
+// line_width means "the default" (zero is not a meaningful value for them).
+// resolve_frame_config applies both and checks every limit.
+struct FrameConfig {
+    int width = kFrameSettings.width.fallback;
+    int height = kFrameSettings.height.fallback;
+    // 1: the framed bounds fit the view; 2: twice as large.
+    float zoom = kFrameSettings.zoom.fallback;
+    float yaw_degrees = kFrameSettings.yaw_degrees.fallback;      // orbit around the vertical axis
+    float pitch_degrees = kFrameSettings.pitch_degrees.fallback;  // elevation (90: looking down)
+    // What zoom 1 frames: the union of the baked bounds (BNDS) of these clips, so an animated
+    // character stays in the picture; both -1 (or an asset without BNDS): the rest pose.
+    int frame_clip = -1;
+    int frame_blend_clip = -1;
+    float fov_degrees = kFrameSettings.fov_degrees.fallback;  // vertical field of view at zoom 1
+    bool relevance_update = true;  // Alg. 6.4; false keeps rest-pose radii (Alg. 6.3 only)
+    float constant_tone = kFrameSettings.constant_tone.fallback;  // kLightingTone or in [0, 1]
+    float max_point_size = kFrameSettings.max_point_size.fallback;
+    float smooth_slope = kFrameSettings.smooth_slope.fallback;
+    float background[3] = {kFrameSettings.background[0], kFrameSettings.background[1],
+                           kFrameSettings.background[2]};
+    anim::Skinning skinning = anim::Skinning::lbs;  // or dual quaternions (no candy wrapper)
+    bool silhouettes = true;  // draw silhouette lines (needs the asset's EDGE section)
+    float line_width = kFrameSettings.line_width.fallback;  // silhouette width in pixels
+    bool depth_readback = false;  // keep the mesh depth for renderer_read_depth (dot lists)
+    // Run-time refinement (runtime/point_refinement.h): extra points generated per frame where
+    // the baked hierarchy runs out (close-ups, stretch). 0 turns it off.
+    uint32_t refinement_budget = kFrameSettings.refinement_budget.fallback;
+    float dark_tone = kFrameSettings.dark_tone.fallback;  // darkest tone lighting asks for
+};
+
+// Writes `in` with defaults in its zero fields (see FrameConfig) to *out. Fails with
+// StatusCode::invalid_argument, naming the field and its range, if a value lies outside its
+// kFrameSettings range (NaN included); *out is then unchanged. `out` may be `&in`.
+[[nodiscard]] Status resolve_frame_config(const FrameConfig& in, FrameConfig* out);
+
+// Every default: the resolved zero config. CLIs print their defaults from it.
+FrameConfig default_frame_config();
+
+}  // namespace stipple

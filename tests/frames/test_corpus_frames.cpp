@@ -1,0 +1,298 @@
+// Frame checks of tone, evenness, stretch and coherence over the issue-7 corpus: every asset
+// baked with stipple-bake's defaults (once per ctest run: tests/test_assets.txt), drawn headless in-process (one EGL context per test
+// process) and measured with tools/frame_measure.h, the library behind stipple-measure.
+// Silhouette lines are off: they add ink along the outline, not over the area, so tone is
+// the mean darkness of the stipples inside the object's mask (the mesh pass's coverage).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "platform/headless_context.h"
+#include "runtime/asset.h"
+#include "runtime/frame_pipeline.h"
+#include "tests/common/fixtures.h"
+#include "tools/frame_measure.h"
+
+namespace {
+
+using namespace stipple;
+
+struct CorpusAsset {
+    const char* name;
+    const char* path;  // under assets/
+};
+
+const CorpusAsset kCorpus[] = {
+    {"CesiumMan", "CesiumMan/CesiumMan.glb"},
+    {"RiggedFigure", "RiggedFigure/RiggedFigure.glb"},
+    {"RiggedSimple", "RiggedSimple/RiggedSimple.glb"},
+    {"SimpleSkin", "SimpleSkin/SimpleSkin.gltf"},
+    {"StretchTube", "stretch_tube/stretch_tube.gltf"},
+    {"Bunny", "StanfordBunny/stanford-bunny.obj"},
+    {"Horse", "Horse/horse.ply"},
+    {"TeapotObj", "UtahTeapot/teapot.obj"},
+    {"TeapotStl", "UtahTeapot/utah_teapot_solid.stl"},
+    {"Spot", "Spot/spot_triangulated.obj"},
+};
+
+constexpr float kOutline = 2.0f;
+
+// One picture as measured: RGBA top row first, the mesh pass's coverage, the dots it shows.
+struct Shot {
+    measure::Image image;
+    measure::Mask mask;
+    std::vector<measure::Dot> dots;
+};
+
+// A baked asset loaded into a pipeline on this process's headless context.
+class Stage {
+  public:
+    // Loads assets/<path> as baked with default options (plus `bake_args`) by the fixture step.
+    bool open(const std::string& path, const std::string& bake_args, const char* clip_name,
+              std::string* error) {
+        if (!headless_.open(error)) return false;
+        const std::string baked = test::baked_asset("assets/" + path, bake_args);
+        if (baked.empty() || !test::load_baked(baked, &asset_, error)) return false;
+        clip_ = asset_.clip_count > 0 ? 0 : -1;
+        if (clip_name) clip_ = find_clip(asset_, clip_name);
+        FrameConfig config;
+        config.width = kWidth;
+        config.height = kHeight;
+        config.silhouettes = false;
+        config.depth_readback = true;
+        config.frame_clip = clip_;
+        pipeline_.reset(new Pipeline());
+        const Status init = pipeline_init(pipeline_.get(), asset_, headless_.gl(), config);
+        if (!init.ok()) {
+            *error = init.message;
+            return false;
+        }
+        rgba_.resize(size_t(kWidth) * kHeight * 4);
+        scratch_.resize(size_t(kWidth) * kHeight * 4);
+        depth_.resize(size_t(kWidth) * kHeight);
+        dots_.resize(pipeline_->point_capacity);
+        return true;
+    }
+
+    // With `outline`, a second picture of the same pose draws only the silhouette lines
+    // (thesis §3.2: outer outline and inner contours where a part passes in front of
+    // another); their pixels leave the mask, so "away from silhouettes" means away from both.
+    Shot shoot(float zoom, float tone, float time = 0.0f, float yaw = 0.0f, bool outline = false) {
+        Shot s = draw(zoom, tone, time, yaw);
+        if (!outline) return s;
+        pipeline_->config.silhouettes = true;
+        const Shot lines = draw(zoom, 0.0f, time, yaw);
+        pipeline_->config.silhouettes = false;
+        for (size_t i = 0; i < s.mask.inside.size(); ++i)
+            if (measure::luminance(&lines.image.rgba[i * 4]) < 0.5) s.mask.inside[i] = 0;
+        return s;
+    }
+
+    Shot draw(float zoom, float tone, float time, float yaw) {
+        FrameConfig view = pipeline_->config;
+        view.zoom = zoom;
+        view.constant_tone = tone;
+        view.yaw_degrees = yaw;
+        const Status set = pipeline_set_view(pipeline_.get(), view);
+        EXPECT_TRUE(set.ok()) << set.message;
+        pipeline_frame(pipeline_.get(), clip_, time, nullptr);
+        renderer_read_color(&pipeline_->renderer, rgba_.data());
+        renderer_read_depth(&pipeline_->renderer, scratch_.data(), depth_.data());
+        Shot s;
+        s.image.width = s.mask.width = kWidth;
+        s.image.height = s.mask.height = kHeight;
+        s.image.rgba.resize(rgba_.size());
+        s.mask.inside.resize(depth_.size());
+        for (int y = 0; y < kHeight; ++y) {  // GL rows are bottom first
+            const size_t from = size_t(kHeight - 1 - y) * kWidth, to = size_t(y) * kWidth;
+            std::copy(rgba_.begin() + from * 4, rgba_.begin() + (from + kWidth) * 4, s.image.rgba.begin() + to * 4);
+            for (int x = 0; x < kWidth; ++x) s.mask.inside[to + x] = depth_[from + x] < 1.0f;
+        }
+        const uint32_t n = pipeline_visible_dots(*pipeline_, depth_.data(), dots_.data(), uint32_t(dots_.size()));
+        s.dots.resize(n);
+        for (uint32_t i = 0; i < n; ++i) s.dots[i] = {dots_[i].id, dots_[i].x, dots_[i].y, dots_[i].size};
+        return s;
+    }
+
+    const Pipeline& pipeline() const { return *pipeline_; }
+
+    ~Stage() {
+        if (pipeline_) pipeline_destroy(pipeline_.get());
+    }
+
+    static constexpr int kWidth = 640, kHeight = 480;
+
+  private:
+    test::HeadlessGl headless_;  // destroyed last: the pipeline's GL objects go first
+    Asset asset_;
+    int clip_ = -1;
+    std::unique_ptr<Pipeline> pipeline_;
+    std::vector<uint8_t> rgba_;
+    std::vector<float> scratch_, depth_;
+    std::vector<VisibleDot> dots_;
+};
+
+// Mean darkness inside the mask, leaving out its outermost 2 px: a dot is 3 px wide, so along
+// the outline half of its ink falls outside the object (there silhouette lines draw); on a
+// small object (zoom 0.25: ~1,500 px) that band is a third of the mask.
+double tone_of(const Shot& s, size_t* pixels = nullptr) {
+    measure::Mask inner = s.mask;
+    const std::vector<float> distance = measure::distance_to_outside(s.mask);
+    for (size_t i = 0; i < distance.size(); ++i) inner.inside[i] = distance[i] > kOutline;
+    size_t n = 0;
+    const double t = measure::mean_tone(s.image.rgba.data(), s.image.width, s.image.height, inner, &n);
+    if (pixels) *pixels = n;
+    return t;
+}
+
+// Relative tolerance of a tone check: 10%, or two standard deviations of the shot noise of
+// the n dots (of full size, 3 px: 7.07 px^2) that `tone` over `pixels` amounts to, 2 / sqrt(n),
+// whichever is larger. The two meet at n = 400; only zoom 0.25 on the smallest assets (20 to
+// 250 dots' worth of ink) is looser (docs/tone.md).
+double tolerance(double tone, size_t pixels) {
+    const double n = tone * double(pixels) / 7.07;
+    return std::max(0.1, 2.0 / std::sqrt(std::max(n, 1.0)));
+}
+
+class Corpus : public ::testing::TestWithParam<CorpusAsset> {};
+
+// Issue 7: tone within +-10% of the target at every zoom from 0.25 to 16 (targets 0.1, 0.3,
+// 0.6), and a target of 0.9 draws at least 0.8. Values printed with ~ come from fewer than
+// 400 dots' worth of ink and are checked within their shot noise (see tolerance).
+TEST_P(Corpus, ToneHoldsAtEveryZoom) {
+    const CorpusAsset& a = GetParam();
+    Stage stage;
+    std::string error;
+    ASSERT_TRUE(stage.open(a.path, "", std::string(a.name) == "StretchTube" ? "rest" : nullptr, &error)) << error;
+    const float zooms[] = {0.25f, 0.5f, 1, 2, 4, 8, 16};
+    for (float target : {0.1f, 0.3f, 0.6f, 0.9f}) {
+        double tone[7], tol[7];
+        std::string row;
+        for (int z = 0; z < 7; ++z) {
+            size_t pixels = 0;
+            tone[z] = tone_of(stage.shoot(zooms[z], target), &pixels);
+            tol[z] = tolerance(target, pixels);
+            ASSERT_GT(pixels, 300u) << a.name << " zoom " << zooms[z];
+            char cell[16];
+            std::snprintf(cell, sizeof(cell), " %.3f%s", tone[z], tol[z] > 0.1 ? "~" : "");
+            row += cell;
+        }
+        std::printf("%-12s tone %.1f:%s\n", a.name, double(target), row.c_str());
+        for (int z = 0; z < 7; ++z) {
+            if (target < 0.8f)
+                EXPECT_NEAR(tone[z], target, tol[z] * target) << a.name << " zoom " << zooms[z];
+            else
+                EXPECT_GE(tone[z], 0.8 - (tol[z] - 0.1) * target) << a.name << " zoom " << zooms[z];
+        }
+    }
+}
+
+// Issue 7: at a constant tone of 0.3, zoom 1 and 4, dots are evenly spread: at most 3% closer
+// than half the median nearest-neighbour distance, NN coefficient of variation at most 0.3,
+// and no 16-px block inside the object without a dot.
+TEST_P(Corpus, DotsAreEvenAtZoomOneAndFour) {
+    const CorpusAsset& a = GetParam();
+    Stage stage;
+    std::string error;
+    ASSERT_TRUE(stage.open(a.path, "", std::string(a.name) == "StretchTube" ? "rest" : nullptr, &error)) << error;
+    for (float zoom : {1.0f, 4.0f}) {
+        const Shot s = stage.shoot(zoom, 0.3f);
+        const measure::Evenness e = measure::evenness(s.dots, s.mask);
+        std::printf("%-12s zoom %.0f: %zu dots, clump share %.4f, NN cv %.3f, empty blocks %d/%d\n",
+                    a.name, double(zoom), e.dots, e.clump_share, e.nn_cv, e.empty_blocks, e.blocks_inside);
+        ASSERT_GT(e.dots, 50u) << a.name;
+        EXPECT_LE(e.clump_share, 0.03) << a.name << " zoom " << zoom;
+        EXPECT_LE(e.nn_cv, 0.3) << a.name << " zoom " << zoom;
+        EXPECT_EQ(e.empty_blocks, 0) << a.name << " zoom " << zoom;
+    }
+}
+
+std::string asset_name(const ::testing::TestParamInfo<CorpusAsset>& info) { return info.param.name; }
+
+INSTANTIATE_TEST_SUITE_P(Issue7, Corpus, ::testing::ValuesIn(kCorpus), asset_name);
+
+// Issue 7: tone in the stretched band of the tube within +-10% of the rest band for upper-bone
+// scales 0.5 to 2.5, whatever the asset's point count (the clip "sweep" scales the upper bone
+// by 0.5 + t along its axis).
+class Stretch : public ::testing::TestWithParam<int> {};
+
+TEST_P(Stretch, ToneOfTheStretchedBandFollowsTheRestBand) {
+    const int points = GetParam();
+    Stage stage;
+    std::string error;
+    ASSERT_TRUE(stage.open("stretch_tube/stretch_tube.gltf", "--points " + std::to_string(points), "sweep", &error))
+        << error;
+    std::printf("tube %6d points, stretched/rest band tone at scale", points);
+    for (float scale : {0.5f, 1.0f, 1.5f, 2.0f, 2.5f}) {
+        // The clip loops at 2 s: scale 2.5 is its last instant.
+        const Shot s = stage.shoot(1.0f, 0.3f, std::min(scale - 0.5f, 1.999f));
+        // Bands on screen: the middle 80% of each bone, projected (the tube stands along +Y:
+        // lower bone y in [0, 1], upper bone y in [1, 1 + scale]).
+        const glm::mat4& vp = stage.pipeline().view_projection;
+        auto row = [&](float y) {
+            const glm::vec4 c = vp * glm::vec4(0.0f, y, 0.0f, 1.0f);
+            return int((0.5f - 0.5f * c.y / c.w) * float(Stage::kHeight));
+        };
+        size_t rest_px = 0, band_px = 0;
+        const double rest = measure::mean_tone_rows(s.image.rgba.data(), s.image.width, s.image.height, s.mask,
+                                                    row(0.9f), row(0.1f), &rest_px);
+        const double band = measure::mean_tone_rows(s.image.rgba.data(), s.image.width, s.image.height, s.mask,
+                                                    row(1.0f + 0.9f * scale), row(1.0f + 0.1f * scale), &band_px);
+        std::printf(" %.1f: %.3f/%.3f", double(scale), band, rest);
+        ASSERT_GT(rest_px, 500u);
+        ASSERT_GT(band_px, 200u);
+        EXPECT_NEAR(band / rest, 1.0, 0.1) << points << " points, scale " << scale;
+    }
+    std::printf("\n");
+}
+
+INSTANTIATE_TEST_SUITE_P(Issue7, Stretch, ::testing::Values(20000, 100000));
+
+// Issue 7: the CesiumMan walk at 30 fps (three-quarter view, as the demo) keeps >= 97% of its
+// dots from frame to frame on average and >= 92% in the worst pair; big dots that blink on or
+// off away from silhouettes (more than 4 px from the outline and from the inner contours
+// where a leg passes in front of the other) are at most 1% of a frame.
+TEST(Coherence, WalkKeepsItsDots) {
+    Stage stage;
+    std::string error;
+    ASSERT_TRUE(stage.open("CesiumMan/CesiumMan.glb", "", nullptr, &error)) << error;
+    std::vector<measure::FramePair> pairs;
+    Shot before = stage.shoot(1.0f, 0.3f, 0.0f, -60.0f, true);
+    for (int f = 1; f < 60; ++f) {
+        Shot after = stage.shoot(1.0f, 0.3f, float(f) / 30.0f, -60.0f, true);
+        pairs.push_back(measure::frame_pair(before.dots, before.mask, after.dots, after.mask));
+        before = std::move(after);
+    }
+    const measure::Coherence c = measure::summarize(pairs);
+    std::printf("walk: mean persistence %.4f, worst %.4f (pair %d), max pop share %.4f\n",
+                c.mean_persistence, c.worst_persistence, c.worst_persistence_pair, c.max_pop_share);
+    EXPECT_GE(c.mean_persistence, 0.97);
+    EXPECT_GE(c.worst_persistence, 0.92);
+    EXPECT_LE(c.max_pop_share, 0.01);
+}
+
+// Issue 7: zooming from 1 to 16 over 150 frames pops no more than the walk: the run-time
+// refinement's points appear at size 0 and grow like baked ones.
+TEST(Coherence, ZoomFromOneToSixteenDoesNotPop) {
+    Stage stage;
+    std::string error;
+    ASSERT_TRUE(stage.open("CesiumMan/CesiumMan.glb", "", nullptr, &error)) << error;
+    std::vector<measure::FramePair> pairs;
+    Shot before = stage.shoot(1.0f, 0.3f);
+    for (int f = 1; f < 150; ++f) {
+        Shot after = stage.shoot(std::pow(16.0f, float(f) / 149.0f), 0.3f);
+        pairs.push_back(measure::frame_pair(before.dots, before.mask, after.dots, after.mask));
+        before = std::move(after);
+    }
+    const measure::Coherence c = measure::summarize(pairs);
+    std::printf("zoom 1 -> 16: max pop share %.4f (pair %d), mean %.5f, pops %zu\n", c.max_pop_share,
+                c.max_pop_share_pair, c.mean_pop_share, c.pops);
+    EXPECT_LE(c.max_pop_share, 0.01);
+}
+
+}  // namespace

@@ -1,0 +1,251 @@
+// stipple-bake: glTF / OBJ / PLY / STL -> .stip asset (mesh, skin, clips, point hierarchy).
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "bake/asset_writer.h"
+#include "bake/point_hierarchy.h"
+#include "bake/scene_import.h"
+#include "bake/scene_orientation.h"
+#include "bake/vertex_normals.h"
+#include "runtime/asset.h"
+#include "runtime/asset_format.h"
+#include "tools/bake_log.h"
+#include "tools/cli_options.h"
+#include "tools/json_line.h"
+
+namespace {
+
+using stipple::bake::HierarchyMethod;
+
+const char* kUsage =
+    "usage: stipple-bake INPUT -o OUT.stip [options]\n"
+    "  INPUT            glTF 2.0 (.gltf/.glb), or a static .obj/.ply/.stl mesh\n"
+    "  -o, --output F   asset to write\n"
+    "  --points N       points in the hierarchy (default 20000, in [1, 20000000])\n"
+    "  --seed S         random seed (default 1, in [0, 2^64 - 1]); same input+options+seed =\n"
+    "                   same bytes\n"
+    "  --jitter J       simplify: randomize range in [0, 0.75] (default 0.35, thesis §4.4.1)\n"
+    "  --method M       eliminate (default: progressive sample elimination, even on any mesh)\n"
+    "                   | simplify (thesis ch. 4) | relax (ch. 5 token relaxation)\n"
+    "                   | random (naive baseline: one random point per polygon)\n"
+    "  --normals M      flat | smooth | auto (split at sharp edges) | input (default auto)\n"
+    "  --crease DEG     auto normals: dihedral angle that makes an edge sharp, an integer in\n"
+    "                   [0, 180] (default 40)\n"
+    "  --double-sided M auto (glTF material.doubleSided; OBJ/PLY/STL single-sided) | on | off:\n"
+    "                   points on double-sided triangles draw from both sides (default auto)\n"
+    "  --up A           y | z: the input's up axis; z turns a Z-up mesh upright (+Z becomes\n"
+    "                   +Y). Default y (glTF is Y-up by its spec; pass z for Z-up PLY/STL)\n"
+    "  --quiet          no warnings and no summary; the progress bar (on stderr, for bakes over\n"
+    "                   a second) shows only when stderr is a terminal (default off)\n"
+    "  -h, --help       this text\n";
+
+struct Options {
+    std::string input, output;
+    long points = 20000;
+    uint64_t seed = 1;
+    stipple::bake::NormalConfig normals;
+    double jitter = 0.35;
+    HierarchyMethod method = HierarchyMethod::eliminate;
+    bool quiet = false;
+    enum class Sides { automatic, on, off } double_sided = Sides::automatic;
+    uint32_t up_axis = stipple::format::kUpY;
+};
+
+stipple::cli::Parser g_parser("stipple-bake", kUsage);
+
+[[noreturn]] void die(const std::string& message) {
+    g_parser.fail(message);
+}
+
+Options parse(int argc, char** argv) {
+    using Sides = Options::Sides;
+    Options o;
+    stipple::cli::Parser& p = g_parser;
+    p.positional("input", &o.input)
+        .text("-o,--output", &o.output)
+        .integer("--points", 1, 20000000, &o.points)
+        .seed("--seed", &o.seed)
+        .number("--jitter", 0, 0.75, &o.jitter)
+        .choice("--method",
+                {std::pair<const char*, HierarchyMethod>{"eliminate", HierarchyMethod::eliminate},
+                 {"simplify", HierarchyMethod::simplify},
+                 {"relax", HierarchyMethod::relax},
+                 {"random", HierarchyMethod::random}},
+                &o.method)
+        .custom("--normals",
+                [&](const std::string& name, const std::string& v) {
+                    if (!stipple::bake::parse_normal_mode(v, &o.normals.mode))
+                        p.bad_value(name, "flat, smooth, auto or input", v);
+                })
+        .custom("--crease",
+                [&](const std::string& name, const std::string& v) {
+                    o.normals.crease_degrees = float(p.integer_value(name, v, 0, 180));
+                })
+        .choice("--double-sided",
+                {std::pair<const char*, Sides>{"auto", Sides::automatic},
+                 {"on", Sides::on},
+                 {"off", Sides::off}},
+                &o.double_sided)
+        .custom("--up",
+                [&](const std::string& name, const std::string& v) {
+                    if (!stipple::bake::parse_up_axis(v, &o.up_axis))
+                        p.bad_value(name, "y or z", v);
+                })
+        .flag("--quiet", &o.quiet);
+    p.parse(argc, argv);
+    if (o.input.empty()) die("no input file (see --help)");
+    if (o.output.empty()) die("no output file: pass -o OUT.stip");
+    return o;
+}
+
+// Progress bar on stderr, only when stderr is a terminal (a redirected log gets no '\r'
+// frames) and not --quiet: silent for the first second (most bakes end sooner), then one
+// line rewritten in place with the phase, a bar, the phase's percentage and the time.
+// STIPPLE_PROGRESS_DELAY (seconds, default 1) changes the silent start (tests set 0).
+struct Progress {
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+    bool enabled = false;
+    bool shown = false;
+    double delay = 1.0;
+    std::string phase;
+    int last = -1;
+
+    double seconds() const {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    void finish() {
+        if (shown) std::fputc('\n', stderr);
+        shown = false;
+    }
+};
+
+void on_progress(const char* phase, float fraction, void* user) {
+    Progress* p = static_cast<Progress*>(user);
+    const double seconds = p->seconds();
+    const int percent = fraction <= 0 ? 0 : (fraction >= 1 ? 100 : int(fraction * 100));
+    if (!p->enabled || seconds < p->delay || (p->phase == phase && percent == p->last)) return;
+    p->phase = phase;
+    p->last = percent;
+    p->shown = true;
+    char bar[25];
+    for (int i = 0; i < 24; ++i) bar[i] = i < percent * 24 / 100 ? '#' : '.';
+    bar[24] = '\0';
+    std::fprintf(stderr, "\r%-16s [%s] %3d%%  %6.1f s", phase, bar, percent, seconds);
+    std::fflush(stderr);
+}
+
+// The summary line on stdout (the keys scripts and tests read).
+void print_summary(const Options& o, const stipple::bake::RawScene& scene,
+                   const stipple::bake::PointHierarchy& points,
+                   const stipple::bake::HierarchyStats& stats, const stipple::Asset& check,
+                   size_t bytes, double seconds) {
+    using stipple::cli::fixed;
+    // Point data only: the coded point stream.
+    const size_t point_bytes = check.section_size[stipple::kSectionPoints];
+    const double n = double(points.size());
+    stipple::cli::Json j;
+    j["input"] = o.input;
+    j["output"] = o.output;
+    j["vertices"] = scene.vertex_count();
+    j["triangles"] = scene.triangle_count();
+    j["joints"] = scene.joint_nodes.size();
+    j["clips"] = scene.clips.size();
+    j["points"] = points.size();
+    j["input_points"] = stats.simplified_points;
+    j["subdivided_points"] = stats.subdivided_points;
+    j["discarded_randomizations"] = stats.discarded_randomizations;
+    j["legal_splits"] = stats.legal_splits;
+    j["slivers"] = {stats.slivers_before_subdivision, stats.slivers_after_subdivision};
+    j["levels"] = stats.levels;
+    j["relax_iterations"] = stats.relax_iterations;
+    j["neighbours_per_point"] = fixed(double(points.neighbours.size()) / n, 2);
+    j["bytes"] = bytes;
+    j["up"] = o.up_axis == stipple::format::kUpZ ? "z" : "y";
+    j["double_sided_triangles"] = check.sides.triangle_count;
+    j["bytes_per_point"] = fixed(double(point_bytes) / n, 2);
+    j["seconds"] = fixed(seconds, 3);
+    stipple::cli::print_json(j);
+}
+
+// Imports, orients and prepares the input's normals; warnings unless --quiet.
+stipple::bake::RawScene import(const Options& o) {
+    using namespace stipple::bake;
+    RawScene scene;
+    const BakeError imported = import_scene(o.input, &scene);
+    if (!imported.ok()) die(imported.message);
+    apply_up_axis(o.up_axis, &scene);
+    if (o.double_sided == Options::Sides::on) scene.double_sided.assign(scene.triangle_count(), 1);
+    if (o.double_sided == Options::Sides::off) scene.double_sided.clear();
+    if (!scene.animated()) orient_outward(&scene);  // glTF's winding is fixed by the spec
+    assign_normals(o.normals, &scene);
+    if (!o.quiet)
+        for (const std::string& w : scene.warnings)
+            std::fprintf(stderr, "warning: %s\n", w.c_str());
+    return scene;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    using namespace stipple::bake;
+    const uint16_t probe = 1;
+    if (*reinterpret_cast<const uint8_t*>(&probe) != 1) die("big-endian hosts are not supported");
+    const Options o = parse(argc, argv);
+    const auto t0 = std::chrono::steady_clock::now();
+
+    Progress progress;
+    progress.enabled = !o.quiet && isatty(fileno(stderr));
+    if (const char* delay = std::getenv("STIPPLE_PROGRESS_DELAY")) progress.delay = std::atof(delay);
+    const RawScene scene = import(o);
+    on_progress("import", 1, &progress);
+
+    HierarchyConfig config;
+    config.point_count = uint32_t(o.points);
+    config.seed = o.seed;
+    config.jitter = float(o.jitter);
+    config.method = o.method;
+    config.progress = on_progress;
+    config.progress_user = &progress;
+    PointHierarchy points;
+    HierarchyStats stats;
+    stipple::tools::LibraryLog log;  // OpenMesh's complex-vertex lines, summarized below
+    const BakeError built = build_point_hierarchy(scene, config, &points, &stats);
+    log.stop();
+    progress.finish();
+    if (!built.ok()) die(o.input + ": " + built.message);
+    if (!o.quiet) {
+        for (const std::string& line : log.summary())
+            std::fprintf(stderr, "warning: %s\n", line.c_str());
+        if (points.size() < size_t(o.points))
+            std::fprintf(stderr, "warning: only %zu points could be built\n", points.size());
+    }
+
+    on_progress("encode", 0, &progress);
+    const std::vector<uint8_t> bytes = encode_asset(scene, points);
+    on_progress("verify", 0, &progress);
+    // Read the asset back with the runtime's validating loader before writing it, so a
+    // bake never leaves an asset the runtime would refuse.
+    stipple::Asset check;
+    stipple::LoadStatus loaded = stipple::load_asset_memory(bytes.data(), bytes.size(), &check);
+    if (!loaded.ok()) {
+        progress.finish();
+        die(std::string("internal error: baked asset does not load: ") + loaded.message);
+    }
+    on_progress("write", 0, &progress);
+    const BakeError written = write_asset(o.output, bytes);
+    if (!written.ok()) {
+        progress.finish();
+        die(written.message);
+    }
+    on_progress("write", 1, &progress);
+    progress.finish();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!o.quiet) print_summary(o, scene, points, stats, check, bytes.size(), seconds);
+    return 0;
+}
