@@ -12,9 +12,6 @@
 // A frame:  SamplingJob (or several + BlendingJob) -> LocalToModelJob -> JointMatrixJob
 //           [-> dqs_joints()] -> MorphJob (if the mesh has morph targets) -> SkinningJob.
 //
-// The plain functions at the end (rest_pose, local_to_model, joint_matrices) are what is left
-// of the original unchecked API: the bake still calls them.
-//
 // Data validity: jobs check buffer *sizes*. Clip and skeleton *contents* are checked once at
 // load with check_clip() / check_skeleton(); sampling is nevertheless memory-safe on any
 // content (channels naming a node or morph weight outside the outputs are ignored, key
@@ -305,18 +302,5 @@ struct SkinningJob {
 
 // "sse2", "neon" or "scalar": the path SkinningJob::run() and the hierarchy jobs use.
 const char* simd_path();
-
-// ---------------------------------------------------------------------------------------
-// Unchecked helpers (sizes are trusted: node_count / joint_count entries), left from the
-// original API for bake/scene_bounds.cpp. New code uses the jobs above.
-
-// Copies the rest pose into `locals` (node_count entries).
-void rest_pose(const Skeleton& skeleton, Trs* locals);
-
-// model[i] = model[parent[i]] * local[i] (node_count entries): LocalToModelJob.
-void local_to_model(const Skeleton& skeleton, const Trs* locals, glm::mat4* model);
-
-// skin[j] = model[joint_nodes[j]] * inverse_bind[j] (joint_count entries): JointMatrixJob.
-void joint_matrices(const Skeleton& skeleton, const glm::mat4* model, glm::mat4* skin);
 
 }  // namespace stipple::anim

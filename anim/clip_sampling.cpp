@@ -265,9 +265,4 @@ bool SamplingJob::run() const {
     return true;
 }
 
-void rest_pose(const Skeleton& skeleton, Trs* locals) {
-    if (skeleton.node_count == 0) return;
-    std::memcpy(locals, skeleton.rest, skeleton.node_count * sizeof(Trs));
-}
-
 }  // namespace stipple::anim

@@ -199,24 +199,6 @@ DataError check_skeleton(const Skeleton& skeleton) {
     return DataError::ok;
 }
 
-void local_to_model(const Skeleton& skeleton, const Trs* locals, glm::mat4* model) {
-    LocalToModelJob job;
-    job.skeleton = &skeleton;
-    job.locals = Span<const Trs>(locals, skeleton.node_count);
-    job.models = Span<glm::mat4>(model, skeleton.node_count);
-    // Spans are built from the skeleton's own counts, so the job's size check always passes.
-    (void)job.run();
-}
-
-void joint_matrices(const Skeleton& skeleton, const glm::mat4* model, glm::mat4* skin) {
-    JointMatrixJob job;
-    job.skeleton = &skeleton;
-    job.models = Span<const glm::mat4>(model, skeleton.node_count);
-    job.joint_matrices = Span<glm::mat4>(skin, skeleton.joint_count);
-    // Spans are built from the skeleton's own counts, so the job's size check always passes.
-    (void)job.run();
-}
-
 const char* simd_path() { return simd::kPath; }
 
 }  // namespace stipple::anim

@@ -80,8 +80,17 @@ struct Poser {
     // Morph, skin and box the pose in `locals` / `weights`.
     void pose_box(float* box) {
         const anim::Skeleton& k = view.skeleton;
-        anim::local_to_model(k, locals.data(), models.data());
-        anim::joint_matrices(k, models.data(), skin.data());
+        anim::LocalToModelJob to_model;
+        to_model.skeleton = &k;
+        to_model.locals = {locals.data(), locals.size()};
+        to_model.models = {models.data(), models.size()};
+        anim::JointMatrixJob to_joints;
+        to_joints.skeleton = &k;
+        to_joints.models = {models.data(), models.size()};
+        to_joints.joint_matrices = {skin.data(), skin.size()};
+        // The buffers are sized from this skeleton, which the importer checked: the jobs
+        // cannot fail, and if they did the box would be the bind pose's.
+        if (!to_model.run() || !to_joints.run()) std::fill(skin.begin(), skin.end(), glm::mat4(1.0f));
         const size_t floats = vertex_count * 3;
         anim::Span<const float> in_p(scene.positions.data(), floats),
             in_n(scene.normals.data(), floats);
@@ -160,7 +169,7 @@ SceneBounds compute_scene_bounds(const RawScene& scene, const BoundsConfig& conf
     anim::SamplingContext context;
     context.cursors = {cursors.data(), cursors.size()};
 
-    anim::rest_pose(view.skeleton, poser.locals.data());
+    std::copy(view.skeleton.rest, view.skeleton.rest + view.skeleton.node_count, poser.locals.begin());
     for (uint32_t i = 0; i < poser.slots; ++i) poser.weights[i] = view.morph.default_weights[i];
     poser.pose_box(out.rest);
     out.clips.assign(view.clips.size() * 6, 0.0f);

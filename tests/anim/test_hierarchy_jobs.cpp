@@ -76,15 +76,6 @@ TEST(AnimSkeleton, JointMatricesApplyInverseBind) {
     model_matrices(skeleton, rest.data(), model);
     skin_matrices(skeleton, model, skin);
     expect_mat4(skin[0], glm::translate(glm::mat4(1.0f), glm::vec3(0, 1, 0)));
-
-    // The plain wrappers (still used by runtime/frame_pipeline.cpp and bake/scene_bounds.cpp)
-    // run the same jobs.
-    glm::mat4 wrapper_model[1], wrapper_skin[2];
-    stipple::anim::local_to_model(skeleton, rest.data(), wrapper_model);
-    stipple::anim::joint_matrices(skeleton, wrapper_model, wrapper_skin);
-    expect_mat4(wrapper_model[0], model[0], 0.0f);
-    expect_mat4(wrapper_skin[0], skin[0], 0.0f);
-    expect_mat4(wrapper_skin[1], skin[1], 0.0f);
 }
 
 TEST(AnimHierarchyJobs, JobValidity) {
