@@ -19,7 +19,6 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
-
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
@@ -82,8 +81,8 @@ uint32_t channel_width(const Channel& channel);
 size_t channel_value_count(const Channel& channel);
 
 struct Clip {
-    const char* name;   // NUL-terminated
-    float duration;     // seconds, >= 0
+    const char* name;  // NUL-terminated
+    float duration;    // seconds, >= 0
     uint32_t channel_count;
     const Channel* channels;
 };
@@ -91,11 +90,11 @@ struct Clip {
 // Node hierarchy and skin. parents[i] < i (or -1 for roots): one forward pass suffices.
 struct Skeleton {
     uint32_t node_count;
-    const int32_t* parents;        // node_count
-    const Trs* rest;               // node_count, the bind/rest local transforms
+    const int32_t* parents;  // node_count
+    const Trs* rest;         // node_count, the bind/rest local transforms
     uint32_t joint_count;
-    const uint32_t* joint_nodes;   // joint_count, each < node_count
-    const float* inverse_bind;     // joint_count * 16, column-major
+    const uint32_t* joint_nodes;  // joint_count, each < node_count
+    const float* inverse_bind;    // joint_count * 16, column-major
 };
 
 // ---------------------------------------------------------------------------------------
@@ -109,18 +108,18 @@ struct Skeleton {
 //              skinning job renormalises it)
 // Several targets (one per primitive of the mesh) share a slot.
 struct MorphTarget {
-    uint32_t weight;                // slot, < Morph::weight_count
-    uint32_t vertex_begin;          // first vertex of the range
-    uint32_t vertex_count;          // vertices in the range
-    const float* position_deltas;   // 3 * vertex_count
-    const float* normal_deltas;     // 3 * vertex_count, or nullptr (no normal deltas)
+    uint32_t weight;               // slot, < Morph::weight_count
+    uint32_t vertex_begin;         // first vertex of the range
+    uint32_t vertex_count;         // vertices in the range
+    const float* position_deltas;  // 3 * vertex_count
+    const float* normal_deltas;    // 3 * vertex_count, or nullptr (no normal deltas)
 };
 
 struct Morph {
-    uint32_t weight_count;          // slots
-    const float* default_weights;   // weight_count: node.weights, else mesh.weights, else 0
+    uint32_t weight_count;         // slots
+    const float* default_weights;  // weight_count: node.weights, else mesh.weights, else 0
     uint32_t target_count;
-    const MorphTarget* targets;     // target_count
+    const MorphTarget* targets;  // target_count
 };
 
 // ---------------------------------------------------------------------------------------
@@ -143,8 +142,8 @@ const char* data_error_name(DataError error);
 // Checks a clip against the skeleton's node count and the number of morph slots; on error
 // *bad_channel (if not null) is the first offending channel. `values` sizes are taken from
 // channel_value_count(): the loader must have checked that those floats exist.
-[[nodiscard]] DataError check_clip(const Clip& clip, uint32_t node_count, uint32_t morph_weight_count,
-                     uint32_t* bad_channel);
+[[nodiscard]] DataError check_clip(const Clip& clip, uint32_t node_count,
+                                   uint32_t morph_weight_count, uint32_t* bad_channel);
 [[nodiscard]] DataError check_skeleton(const Skeleton& skeleton);
 [[nodiscard]] DataError check_morph(const Morph& morph, uint32_t vertex_count);
 
@@ -156,8 +155,8 @@ const char* data_error_name(DataError error);
 // keys it needs instead of binary-searching. Any time, forward or backward, is correct;
 // jumps of more than a few keys fall back to a binary search.
 struct SamplingContext {
-    Span<uint32_t> cursors;     // caller-owned; >= channel_count of every clip sampled with it
-    const Clip* clip = nullptr; // the clip the cursors belong to (run() resets on change)
+    Span<uint32_t> cursors;      // caller-owned; >= channel_count of every clip sampled with it
+    const Clip* clip = nullptr;  // the clip the cursors belong to (run() resets on change)
     void invalidate() { clip = nullptr; }
 };
 
@@ -174,9 +173,9 @@ struct SamplingJob {
     const Clip* clip = nullptr;
     float time = 0.0f;
     Wrap wrap = Wrap::clamp;
-    SamplingContext* context = nullptr;   // optional; cursors >= clip->channel_count
-    Span<Trs> locals;                     // >= skeleton->node_count
-    Span<float> morph_weights;            // optional output, one per morph slot
+    SamplingContext* context = nullptr;       // optional; cursors >= clip->channel_count
+    Span<Trs> locals;                         // >= skeleton->node_count
+    Span<float> morph_weights;                // optional output, one per morph slot
     Span<const float> default_morph_weights;  // empty (zeros) or >= morph_weights.size
     [[nodiscard]] bool validate() const;
     [[nodiscard]] bool run() const;
@@ -193,18 +192,18 @@ struct SamplingJob {
 //   drives (masked out everywhere, or all weights 0) returns to its rest pose.
 // Morph weights blend the same way (weighted mean, rest = default weights).
 struct BlendLayer {
-    Span<const Trs> locals;              // >= node_count
-    float weight = 0.0f;                 // <= 0 (or NaN): the layer is skipped
-    Span<const float> node_weights;      // optional per-node mask in [0, 1]; >= node_count
-    Span<const float> morph_weights;     // optional; >= out_morph_weights.size
+    Span<const Trs> locals;           // >= node_count
+    float weight = 0.0f;              // <= 0 (or NaN): the layer is skipped
+    Span<const float> node_weights;   // optional per-node mask in [0, 1]; >= node_count
+    Span<const float> morph_weights;  // optional; >= out_morph_weights.size
 };
 
 struct BlendingJob {
     const Skeleton* skeleton = nullptr;  // node_count and the rest pose
     Span<const BlendLayer> layers;
-    float threshold = 0.1f;              // > 0
-    Span<Trs> out;                       // >= node_count
-    Span<float> out_morph_weights;       // optional
+    float threshold = 0.1f;                   // > 0
+    Span<Trs> out;                            // >= node_count
+    Span<float> out_morph_weights;            // optional
     Span<const float> default_morph_weights;  // empty (zeros) or >= out_morph_weights.size
     [[nodiscard]] bool validate() const;
     [[nodiscard]] bool run() const;
@@ -220,8 +219,8 @@ struct BlendingJob {
 // model[i] = model[parent[i]] * (T * R * S)(locals[i])  (glTF 2.0 §3.5.3).
 struct LocalToModelJob {
     const Skeleton* skeleton = nullptr;
-    Span<const Trs> locals;   // >= node_count
-    Span<glm::mat4> models;   // >= node_count
+    Span<const Trs> locals;  // >= node_count
+    Span<glm::mat4> models;  // >= node_count
     [[nodiscard]] bool validate() const;
     [[nodiscard]] bool run() const;
 };
@@ -229,8 +228,8 @@ struct LocalToModelJob {
 // skin[j] = model[joint_nodes[j]] * inverse_bind[j]  (glTF 2.0 §3.7.3 joint matrix).
 struct JointMatrixJob {
     const Skeleton* skeleton = nullptr;
-    Span<const glm::mat4> models;   // >= node_count
-    Span<glm::mat4> joint_matrices; // >= joint_count
+    Span<const glm::mat4> models;    // >= node_count
+    Span<glm::mat4> joint_matrices;  // >= joint_count
     [[nodiscard]] bool validate() const;
     [[nodiscard]] bool run() const;
 };
@@ -242,12 +241,12 @@ struct JointMatrixJob {
 struct MorphJob {
     const Morph* morph = nullptr;
     uint32_t vertex_count = 0;
-    Span<const float> weights;         // >= morph->weight_count
-    Span<const float> in_positions;    // >= 3 * vertex_count
-    Span<const float> in_normals;      // empty, or >= 3 * vertex_count
-    Span<float> out_positions;         // >= 3 * vertex_count
-    Span<float> out_normals;           // empty iff in_normals is; else >= 3 * vertex_count
-    [[nodiscard]] bool validate() const;             // also checks every target's range fits vertex_count
+    Span<const float> weights;            // >= morph->weight_count
+    Span<const float> in_positions;       // >= 3 * vertex_count
+    Span<const float> in_normals;         // empty, or >= 3 * vertex_count
+    Span<float> out_positions;            // >= 3 * vertex_count
+    Span<float> out_normals;              // empty iff in_normals is; else >= 3 * vertex_count
+    [[nodiscard]] bool validate() const;  // also checks every target's range fits vertex_count
     [[nodiscard]] bool run() const;
 };
 
@@ -261,9 +260,9 @@ struct MorphJob {
 // applied first, the dual quaternions are blended by DLB ("two-phase" skinning, Kavan et al.
 // §4 on non-rigid joints).
 struct DqsJoint {
-    float real[4];     // rotation quaternion x, y, z, w (unit)
-    float dual[4];     // x, y, z, w
-    float stretch[12]; // S, 3 columns of (x, y, z, 0)
+    float real[4];      // rotation quaternion x, y, z, w (unit)
+    float dual[4];      // x, y, z, w
+    float stretch[12];  // S, 3 columns of (x, y, z, 0)
 };
 
 // Converts joint matrices to DQS joints. Returns false on size mismatch (out.size <

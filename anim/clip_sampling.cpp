@@ -68,10 +68,10 @@ void slerp_shortest(const float* a, const float* b, float t, float* out) {
     // factor on the last term, balancing the truncation error of the full 8-term series;
     // 1.87 minimises the worst angular error over the shortest arc (fitted in double).
     static constexpr float kMu = 1.87f;
-    static constexpr float kUp[8] = {1.0f / (1 * 3), 1.0f / (2 * 5), 1.0f / (3 * 7),
-                                     1.0f / (4 * 9), 1.0f / (5 * 11), 1.0f / (6 * 13),
+    static constexpr float kUp[8] = {1.0f / (1 * 3),  1.0f / (2 * 5),  1.0f / (3 * 7),
+                                     1.0f / (4 * 9),  1.0f / (5 * 11), 1.0f / (6 * 13),
                                      1.0f / (7 * 15), 1.0f / (8 * 17)};
-    static constexpr float kVp[8] = {1.0f / 3, 2.0f / 5, 3.0f / 7, 4.0f / 9,
+    static constexpr float kVp[8] = {1.0f / 3,  2.0f / 5,  3.0f / 7,  4.0f / 9,
                                      5.0f / 11, 6.0f / 13, 7.0f / 15, 8.0f / 17};
     static constexpr float kU[8] = {kUp[0], kUp[1], kUp[2], kUp[3],
                                     kUp[4], kUp[5], kUp[6], kMu * kUp[7]};
@@ -127,7 +127,7 @@ void cubic(const float* values, uint32_t k, uint32_t width, float s, float td, f
 
 // Samples one channel at t into `out` (width floats). Returns the new cursor.
 inline uint32_t sample_channel(const Channel& channel, uint32_t width, float t, uint32_t cursor,
-                        float* out) {
+                               float* out) {
     const uint32_t n = channel.key_count;
     const uint32_t k = seek(channel.times, n, t, cursor);
     const bool cubic_spline = channel.interp == Interp::cubic_spline;
@@ -186,8 +186,8 @@ uint32_t channel_width(const Channel& channel) {
 }
 
 size_t channel_value_count(const Channel& channel) {
-    const size_t per_key = size_t{channel_width(channel)} *
-                           (channel.interp == Interp::cubic_spline ? 3u : 1u);
+    const size_t per_key =
+        size_t{channel_width(channel)} * (channel.interp == Interp::cubic_spline ? 3u : 1u);
     return per_key * channel.key_count;
 }
 

@@ -46,14 +46,14 @@ void compose(const float* parent, const Trs& local, float* out) {
     const f4 p2 = simd::load(parent + 8);
     const f4 p3 = simd::load(parent + 12);
     for (int c = 0; c < 3; ++c) {
-        const f4 col = simd::madd(
-            p0, simd::splat(r[c][0]),
-            simd::madd(p1, simd::splat(r[c][1]), simd::mul(p2, simd::splat(r[c][2]))));
+        const f4 col =
+            simd::madd(p0, simd::splat(r[c][0]),
+                       simd::madd(p1, simd::splat(r[c][1]), simd::mul(p2, simd::splat(r[c][2]))));
         simd::store(out + 4 * c, col);
     }
-    const f4 col3 = simd::madd(
-        p0, simd::splat(t[0]),
-        simd::madd(p1, simd::splat(t[1]), simd::madd(p2, simd::splat(t[2]), p3)));
+    const f4 col3 =
+        simd::madd(p0, simd::splat(t[0]),
+                   simd::madd(p1, simd::splat(t[1]), simd::madd(p2, simd::splat(t[2]), p3)));
     simd::store(out + 12, col3);
 }
 
@@ -89,9 +89,8 @@ bool LocalToModelJob::run() const {
         const int32_t parent = skeleton->parents[i];
         // parents[i] < i, so the parent's model matrix is already written. Anything else
         // (-1, or a malformed forward reference) makes the node a root.
-        const float* p = parent >= 0 && static_cast<uint32_t>(parent) < i
-                             ? &models.data[parent][0][0]
-                             : nullptr;
+        const float* p =
+            parent >= 0 && static_cast<uint32_t>(parent) < i ? &models.data[parent][0][0] : nullptr;
         compose(p, locals.data[i], &models.data[i][0][0]);
     }
     return true;
@@ -199,6 +198,8 @@ DataError check_skeleton(const Skeleton& skeleton) {
     return DataError::ok;
 }
 
-const char* simd_path() { return simd::kPath; }
+const char* simd_path() {
+    return simd::kPath;
+}
 
 }  // namespace stipple::anim

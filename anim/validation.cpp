@@ -71,7 +71,8 @@ DataError check_morph(const Morph& morph, uint32_t vertex_count) {
             t.vertex_count > vertex_count - t.vertex_begin || t.position_deltas == nullptr)
             return DataError::target_out_of_range;
         if (!all_finite(t.position_deltas, size_t{t.vertex_count} * 3) ||
-            (t.normal_deltas != nullptr && !all_finite(t.normal_deltas, size_t{t.vertex_count} * 3)))
+            (t.normal_deltas != nullptr &&
+             !all_finite(t.normal_deltas, size_t{t.vertex_count} * 3)))
             return DataError::non_finite_value;
     }
     return DataError::ok;

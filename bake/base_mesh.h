@@ -14,14 +14,16 @@ using Vec3d = OpenMesh::Vec3d;
 constexpr uint32_t kNoFace = 0xFFFFFFFFu;
 
 struct BaseMesh {
-    std::vector<Vec3d> positions;         // per vertex
-    std::vector<uint32_t> faces;          // 3 vertex indices per face
-    std::vector<uint32_t> host;           // input triangle each face lies in
-    std::vector<uint32_t> across;         // 3 per face: the face across edge (v[k], v[k+1])
-    std::vector<uint32_t> vf_offsets, vf; // faces around each vertex (CSR)
+    std::vector<Vec3d> positions;          // per vertex
+    std::vector<uint32_t> faces;           // 3 vertex indices per face
+    std::vector<uint32_t> host;            // input triangle each face lies in
+    std::vector<uint32_t> across;          // 3 per face: the face across edge (v[k], v[k+1])
+    std::vector<uint32_t> vf_offsets, vf;  // faces around each vertex (CSR)
 
     uint32_t face_count() const { return uint32_t(host.size()); }
-    const Vec3d& corner(uint32_t f, int k) const { return positions[faces[size_t(f) * 3 + size_t(k)]]; }
+    const Vec3d& corner(uint32_t f, int k) const {
+        return positions[faces[size_t(f) * 3 + size_t(k)]];
+    }
     double area(uint32_t f) const;
     Vec3d unit_normal(uint32_t f) const;
     // Faces sharing a vertex with f, f included, sorted (Alg. 5.2's neighbouring polygons).

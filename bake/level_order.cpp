@@ -23,9 +23,9 @@ constexpr double kQuarterTurn = 1.5707963267948966;
 // the searches made in cell order too, the neighbours of 1M points take 1.7x less time).
 struct Level {
     const LevelPoints& pts;
-    PointGrid grid;                        // over the slots
-    std::vector<uint32_t> id_of, slot_of;  // slot -> point, point -> slot
-    std::vector<double> xyz, normal;       // per slot
+    PointGrid grid;                          // over the slots
+    std::vector<uint32_t> id_of, slot_of;    // slot -> point, point -> slot
+    std::vector<double> xyz, normal;         // per slot
     std::vector<char> placed_point, placed;  // per point / per slot
 
     explicit Level(const LevelPoints& p) : pts(p), placed_point(p.size(), 0) {}

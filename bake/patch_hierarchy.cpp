@@ -73,7 +73,8 @@ PatchLevel fuse_level(PatchLevel* below, Boxes* boxes, int group, Rng* rng) {
             uint32_t best = kNoPatch;
             double best_span = 1e300;
             for (uint32_t c : members)
-                for (uint32_t k = below->neighbour_offsets[c]; k < below->neighbour_offsets[c + 1]; ++k) {
+                for (uint32_t k = below->neighbour_offsets[c]; k < below->neighbour_offsets[c + 1];
+                     ++k) {
                     const uint32_t nb = below->neighbours[k];
                     if (below->parent[nb] != kNoPatch) continue;
                     Vec3d l = lo, h = hi;

@@ -25,7 +25,8 @@ class PointGrid {
         order_.resize(count);
         for (uint32_t i = 0; i < count; ++i) order_[i] = keyed[i].second;
         size_t cells = 0;
-        for (uint32_t i = 0; i < count; ++i) cells += (i == 0 || keyed[i].first != keyed[i - 1].first);
+        for (uint32_t i = 0; i < count; ++i)
+            cells += (i == 0 || keyed[i].first != keyed[i - 1].first);
         size_t size = 16;
         while (size < 2 * cells) size *= 2;
         mask_ = size - 1;
@@ -76,7 +77,9 @@ class PointGrid {
     static uint64_t pack(int64_t x, int64_t y, int64_t z) {
         return (uint64_t(x) << 42) | (uint64_t(y) << 21) | uint64_t(z);
     }
-    uint64_t key_of(const double* p) const { return pack(coord(p[0], 0), coord(p[1], 1), coord(p[2], 2)); }
+    uint64_t key_of(const double* p) const {
+        return pack(coord(p[0], 0), coord(p[1], 1), coord(p[2], 2));
+    }
     size_t hash(uint64_t key) const { return size_t((key * 0x9E3779B97F4A7C15ull) >> 20) & mask_; }
     const Slot* find(uint64_t key) const {
         for (size_t h = hash(key);; h = (h + 1) & mask_) {

@@ -10,8 +10,8 @@
 #include <queue>
 #include <tuple>
 
-#include "bake/bake_random.h"
 #include "anim/finite.h"
+#include "bake/bake_random.h"
 #include "bake/base_mesh.h"
 #include "bake/radius_calibration.h"
 #include "bake/sample_elimination.h"
@@ -513,9 +513,11 @@ BakeError check_input(const RawScene& scene, const HierarchyConfig& config) {
     if (config.point_count == 0) {
         return bake_error(BakeErrorCode::invalid_option, "point count must be positive");
     }
-    if (!all_finite(scene.positions)) return malformed_input("mesh has a vertex position that is not finite");
+    if (!all_finite(scene.positions))
+        return malformed_input("mesh has a vertex position that is not finite");
     for (uint32_t i : scene.indices)
-        if (i >= scene.vertex_count()) return malformed_input("mesh has a triangle index out of range");
+        if (i >= scene.vertex_count())
+            return malformed_input("mesh has a triangle index out of range");
     return BakeError();
 }
 

@@ -15,31 +15,31 @@
 namespace stipple::bake {
 
 struct PointHierarchy {
-    std::vector<uint32_t> host_triangle;     // triangle of the input mesh holding the point
-    std::vector<float> bary_u, bary_v;       // weights of the host's 1st and 2nd vertex
-    std::vector<float> radius;               // relevance radius, object space (§4.5)
-    std::vector<uint32_t> neighbour_offsets; // size() + 1 entries
-    std::vector<uint32_t> neighbours;        // relevant neighbours, as point indices
+    std::vector<uint32_t> host_triangle;      // triangle of the input mesh holding the point
+    std::vector<float> bary_u, bary_v;        // weights of the host's 1st and 2nd vertex
+    std::vector<float> radius;                // relevance radius, object space (§4.5)
+    std::vector<uint32_t> neighbour_offsets;  // size() + 1 entries
+    std::vector<uint32_t> neighbours;         // relevant neighbours, as point indices
     size_t size() const { return host_triangle.size(); }
 };
 
 enum class HierarchyMethod {
-    simplify,  // thesis ch. 4: randomize + project, simplification and legal subdivision
-    random,    // naive baseline: one random point per polygon, in random order (Fig. 5.1)
-    relax,     // thesis ch. 5: primary relaxation, patch hierarchy, graph token relaxation
-    eliminate, // progressive weighted sample elimination over area-uniform surface samples
-               // (Yuksel 2015; bake/sample_elimination.h): even on any triangulation
+    simplify,   // thesis ch. 4: randomize + project, simplification and legal subdivision
+    random,     // naive baseline: one random point per polygon, in random order (Fig. 5.1)
+    relax,      // thesis ch. 5: primary relaxation, patch hierarchy, graph token relaxation
+    eliminate,  // progressive weighted sample elimination over area-uniform surface samples
+                // (Yuksel 2015; bake/sample_elimination.h): even on any triangulation
 };
 
 // Token relaxation parameters (thesis ch. 5); the defaults are the thesis's.
 struct RelaxConfig {
-    int primary_iterations = 6;   // §5.6.2: "a constant number of six primary relaxations"
-    double primary_step = 0.5;    // fraction of the mean repulsive force moved per iteration
-    int fusion_neighbours = 4;    // §5.4: the smallest patch is fused with four neighbours
-    int token_depth = 3;          // §5.5.1: tokens start on descendants three levels below
-    int max_iterations = 50;      // §5.6.2: at most 50 iterations per level...
-    int patience = 15;            // ...or 15 without a decrease of the total tension
-    double repulsion_k = 1.0;     // §5.5.3: repulsionRadius = k sqrt(a / n), k in [1, 2]
+    int primary_iterations = 6;  // §5.6.2: "a constant number of six primary relaxations"
+    double primary_step = 0.5;   // fraction of the mean repulsive force moved per iteration
+    int fusion_neighbours = 4;   // §5.4: the smallest patch is fused with four neighbours
+    int token_depth = 3;         // §5.5.1: tokens start on descendants three levels below
+    int max_iterations = 50;     // §5.6.2: at most 50 iterations per level...
+    int patience = 15;           // ...or 15 without a decrease of the total tension
+    double repulsion_k = 1.0;    // §5.5.3: repulsionRadius = k sqrt(a / n), k in [1, 2]
     // §5.1 asks for at least one polygon per point. With exactly one, the finest level is a
     // point in every polygon and copies the input's tessellation density (the dark seams of
     // a scan at zoom 4); with more, the finest level is the part of that level taken
@@ -58,7 +58,7 @@ struct HierarchyConfig {
     // Randomize operator range (§4.4.1, Fig. 4.11 shows 15%, 35% and 75%): a vertex moves
     // up to this fraction of the way towards the other corners of a random incident face.
     float jitter = 0.35f;
-    float weld_epsilon = 1e-6f;    // relative to the bounding-box diagonal
+    float weld_epsilon = 1e-6f;  // relative to the bounding-box diagonal
     RelaxConfig relax;
     // Called now and then with the current phase and its progress; may be null.
     ProgressFn progress = nullptr;
@@ -71,16 +71,16 @@ struct HierarchyConfig {
 
 struct HierarchyStats {
     uint32_t welded_vertices = 0;
-    uint32_t skipped_faces = 0;      // degenerate after welding
-    uint32_t split_vertices = 0;     // vertices duplicated to keep the mesh manifold
-    uint32_t simplified_points = 0;  // points from input vertices (Alg. 4.1)
-    uint32_t subdivided_points = 0;  // points from edge splits (Alg. 4.2)
-    uint32_t discarded_randomizations = 0;  // moves undone: they folded a face or made a sliver
-    uint32_t legal_splits = 0;       // extra splits made by refineLocal (Alg. 4.3)
+    uint32_t skipped_faces = 0;               // degenerate after welding
+    uint32_t split_vertices = 0;              // vertices duplicated to keep the mesh manifold
+    uint32_t simplified_points = 0;           // points from input vertices (Alg. 4.1)
+    uint32_t subdivided_points = 0;           // points from edge splits (Alg. 4.2)
+    uint32_t discarded_randomizations = 0;    // moves undone: they folded a face or made a sliver
+    uint32_t legal_splits = 0;                // extra splits made by refineLocal (Alg. 4.3)
     uint32_t slivers_before_subdivision = 0;  // faces with an angle < 10 deg, randomized input
     uint32_t slivers_after_subdivision = 0;   // the same after subdivision
-    uint32_t levels = 0;             // relax: levels of the patch hierarchy; eliminate: halvings
-    uint32_t relax_iterations = 0;   // relax: token relaxation iterations, all levels
+    uint32_t levels = 0;            // relax: levels of the patch hierarchy; eliminate: halvings
+    uint32_t relax_iterations = 0;  // relax: token relaxation iterations, all levels
 };
 
 // Errors: malformed_input (no triangles, a non-finite position, an index out of range, no

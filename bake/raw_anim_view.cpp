@@ -28,13 +28,13 @@ void make_anim_view(const RawScene& scene, RawAnimView* view) {
                                view->channels.data() + first});
     }
     for (const RawMorphTarget& t : scene.morph_targets) {
-        view->morph_targets.push_back(
-            {t.weight, t.vertex_begin, t.vertex_count, t.position_deltas.data(),
-             t.normal_deltas.empty() ? nullptr : t.normal_deltas.data()});
+        view->morph_targets.push_back({t.weight, t.vertex_begin, t.vertex_count,
+                                       t.position_deltas.data(),
+                                       t.normal_deltas.empty() ? nullptr : t.normal_deltas.data()});
     }
-    view->skeleton = {uint32_t(scene.nodes.size()), view->parents.data(), view->rest.data(),
-                      uint32_t(scene.joint_nodes.size()), scene.joint_nodes.data(),
-                      scene.inverse_bind.data()};
+    view->skeleton = {
+        uint32_t(scene.nodes.size()),       view->parents.data(),     view->rest.data(),
+        uint32_t(scene.joint_nodes.size()), scene.joint_nodes.data(), scene.inverse_bind.data()};
     view->morph = {uint32_t(scene.morph_weights.size()), scene.morph_weights.data(),
                    uint32_t(view->morph_targets.size()), view->morph_targets.data()};
 }

@@ -12,7 +12,7 @@ namespace stipple::bake {
 struct RawAnimView {
     std::vector<int32_t> parents;
     std::vector<anim::Trs> rest;
-    std::vector<anim::Channel> channels;     // all clips' channels, clip after clip
+    std::vector<anim::Channel> channels;  // all clips' channels, clip after clip
     std::vector<anim::Clip> clips;
     std::vector<anim::MorphTarget> morph_targets;
     anim::Skeleton skeleton = {};

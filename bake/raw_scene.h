@@ -57,7 +57,7 @@ struct RawClip {
 // zero are not stored. Deltas are in the same space as `positions` (bind space or node
 // space, see RawScene).
 struct RawMorphTarget {
-    uint32_t weight = 0;                 // index into RawScene::morph_weights
+    uint32_t weight = 0;  // index into RawScene::morph_weights
     uint32_t vertex_begin = 0;
     uint32_t vertex_count = 0;
     std::vector<float> position_deltas;  // 3 * vertex_count
@@ -85,16 +85,16 @@ struct RawMorphTarget {
 // 0), `morph_weight_nodes` the node owning each slot (slots of one node are consecutive).
 // The runtime applies them before skinning; weights channels animate the slots.
 struct RawScene {
-    std::vector<float> positions;  // 3 per vertex
-    std::vector<float> normals;    // 3 per vertex, unit length (computed if the input has none)
-    std::vector<uint32_t> indices; // 3 per triangle, all < vertex count
+    std::vector<float> positions;   // 3 per vertex
+    std::vector<float> normals;     // 3 per vertex, unit length (computed if the input has none)
+    std::vector<uint32_t> indices;  // 3 per triangle, all < vertex count
 
     std::vector<uint16_t> joints;  // 4 per vertex, indices into joint_nodes
     std::vector<float> weights;    // 4 per vertex, sum 1
 
-    std::vector<RawNode> nodes;          // parents before children
-    std::vector<uint32_t> joint_nodes;   // node index of each joint
-    std::vector<float> inverse_bind;     // 16 per joint, column-major
+    std::vector<RawNode> nodes;         // parents before children
+    std::vector<uint32_t> joint_nodes;  // node index of each joint
+    std::vector<float> inverse_bind;    // 16 per joint, column-major
     std::vector<RawClip> clips;
 
     std::vector<RawMorphTarget> morph_targets;
@@ -108,7 +108,7 @@ struct RawScene {
     // always Y-up once apply_up_axis() has run (bake/scene_orientation.h).
     uint32_t up_axis = 1;
 
-    std::vector<std::string> warnings;   // things skipped or repaired, for the bake log
+    std::vector<std::string> warnings;  // things skipped or repaired, for the bake log
 
     size_t vertex_count() const { return positions.size() / 3; }
     size_t triangle_count() const { return indices.size() / 3; }

@@ -90,7 +90,8 @@ struct Poser {
         to_joints.joint_matrices = {skin.data(), skin.size()};
         // The buffers are sized from this skeleton, which the importer checked: the jobs
         // cannot fail, and if they did the box would be the bind pose's.
-        if (!to_model.run() || !to_joints.run()) std::fill(skin.begin(), skin.end(), glm::mat4(1.0f));
+        if (!to_model.run() || !to_joints.run())
+            std::fill(skin.begin(), skin.end(), glm::mat4(1.0f));
         const size_t floats = vertex_count * 3;
         anim::Span<const float> in_p(scene.positions.data(), floats),
             in_n(scene.normals.data(), floats);
@@ -169,7 +170,8 @@ SceneBounds compute_scene_bounds(const RawScene& scene, const BoundsConfig& conf
     anim::SamplingContext context;
     context.cursors = {cursors.data(), cursors.size()};
 
-    std::copy(view.skeleton.rest, view.skeleton.rest + view.skeleton.node_count, poser.locals.begin());
+    std::copy(view.skeleton.rest, view.skeleton.rest + view.skeleton.node_count,
+              poser.locals.begin());
     for (uint32_t i = 0; i < poser.slots; ++i) poser.weights[i] = view.morph.default_weights[i];
     poser.pose_box(out.rest);
     out.clips.assign(view.clips.size() * 6, 0.0f);

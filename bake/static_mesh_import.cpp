@@ -102,7 +102,7 @@ BakeError read_static_mesh(const std::string& path, RawScene* scene) {
     }
     if (!ok) {
         return malformed_input("cannot read mesh" +
-                         (messages.empty() ? std::string() : ": " + messages.front()));
+                               (messages.empty() ? std::string() : ": " + messages.front()));
     }
     add_reader_warnings(messages, scene);
     if (mesh.n_vertices() > std::numeric_limits<uint32_t>::max()) {
@@ -130,7 +130,8 @@ BakeError read_static_mesh(const std::string& path, RawScene* scene) {
             slot = uint32_t(scene->positions.size() / 3);
             const auto p = mesh.point(OpenMesh::VertexHandle(int(index)));
             if (!all_finite(p.data(), 3)) {
-                return malformed_input("vertex " + std::to_string(index) + " has a non-finite position");
+                return malformed_input("vertex " + std::to_string(index) +
+                                       " has a non-finite position");
             }
             for (int c = 0; c < 3; ++c) scene->positions.push_back(p[c]);
         }

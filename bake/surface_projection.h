@@ -41,7 +41,7 @@ class InputSurface {
 
   private:
     const RawScene& scene_;
-    std::vector<Vec3d> normals_;          // unit normal per triangle (0 if degenerate)
+    std::vector<Vec3d> normals_;  // unit normal per triangle (0 if degenerate)
     double area_ = 0;
     std::vector<uint32_t> near_offsets_;  // CSR: triangles sharing a vertex with t
     std::vector<uint32_t> near_;

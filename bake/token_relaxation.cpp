@@ -7,7 +7,6 @@
 #include "bake/level_order.h"
 #include "bake/patch_hierarchy.h"
 
-
 namespace stipple::bake {
 
 namespace {
@@ -88,9 +87,9 @@ struct TokenLevel {
     const RelaxConfig& config;
     int level, node_level;
     double repulsion;
-    std::vector<uint32_t> node;      // per token: its node; fixed tokens first
-    uint32_t fixed = 0;              // tokens [0, fixed) do not move
-    std::vector<uint32_t> occupant;  // per node: token or kNoPatch
+    std::vector<uint32_t> node;                    // per token: its node; fixed tokens first
+    uint32_t fixed = 0;                            // tokens [0, fixed) do not move
+    std::vector<uint32_t> occupant;                // per node: token or kNoPatch
     std::vector<uint32_t> bucket_offsets, bucket;  // tokens by patch of `level`
 
     const PatchLevel& nodes() const { return h.levels[size_t(node_level)]; }
@@ -243,8 +242,9 @@ std::vector<uint32_t> place_tokens(const PatchHierarchy& h, const Centres& centr
     std::vector<uint32_t> leaves;
     const int top = int(h.levels.size()) - 1;
     for (int level = top; level >= 0; --level) {
-        TokenLevel tl{h, centres, config.relax, level, std::max(level - config.relax.token_depth, 0),
-                      0, {}, 0, {}, {}, {}};
+        TokenLevel tl{
+            h, centres, config.relax, level, std::max(level - config.relax.token_depth, 0), 0, {},
+            0, {},      {},           {}};
         const PatchLevel& nodes = tl.nodes();
         tl.occupant.assign(nodes.size(), kNoPatch);
         const PatchLevel& patches = h.levels[size_t(level)];
@@ -292,7 +292,8 @@ std::vector<uint32_t> place_tokens(const PatchHierarchy& h, const Centres& centr
         }
         tl.repulsion = config.relax.repulsion_k * std::sqrt(area / double(tl.node.size()));
         if (tl.node_level < level && stats) stats->relax_iterations += uint32_t(tl.relax());
-        for (uint32_t t = tl.fixed; t < tl.node.size(); ++t) leaves.push_back(nodes.leaf[tl.node[t]]);
+        for (uint32_t t = tl.fixed; t < tl.node.size(); ++t)
+            leaves.push_back(nodes.leaf[tl.node[t]]);
         level_end->push_back(uint32_t(leaves.size()));
         config.report("relax: tokens", float(top - level + 1) / float(top + 1));
         if (leaves.size() >= config.point_count) break;  // finer levels are not wanted
@@ -310,7 +311,8 @@ void emit(const InputSurface& surface, const BaseMesh& base, const Centres& cent
     out->neighbour_offsets.push_back(0);
     for (uint32_t i = 0; i < order.size(); ++i) {
         const uint32_t id = order[i], leaf = leaves[id];
-        const SurfacePoint s = surface.locate(base.host[centres.face[leaf]], centres.position[leaf]);
+        const SurfacePoint s =
+            surface.locate(base.host[centres.face[leaf]], centres.position[leaf]);
         out->host_triangle.push_back(s.host);
         out->bary_u.push_back(float(s.u));
         out->bary_v.push_back(float(s.v));
@@ -336,7 +338,8 @@ void relax_hierarchy(const InputSurface& surface, const BaseMesh& base,
     const PatchHierarchy h = fuse_patches(base, config.relax.fusion_neighbours, &rng);
     if (stats) stats->levels = uint32_t(h.levels.size());
     std::vector<uint32_t> level_end;
-    const std::vector<uint32_t> leaves = place_tokens(h, centres, area, config, &rng, &level_end, stats);
+    const std::vector<uint32_t> leaves =
+        place_tokens(h, centres, area, config, &rng, &level_end, stats);
     config.report("relax: order", 0);
     LevelPoints lp;
     lp.level_end = level_end;
@@ -372,7 +375,8 @@ void random_hierarchy(const InputSurface& surface, const BaseMesh& base,
         std::swap(order[i - 1], order[rng.below(i)]);
     // Radius of rank i: the region area / (i + 1) of an even prefix (runtime/stipple_size.h).
     std::vector<float> radius(leaves.size());
-    for (uint32_t i = 0; i < order.size(); ++i) radius[order[i]] = float(std::sqrt(area / double(i + 1)));
+    for (uint32_t i = 0; i < order.size(); ++i)
+        radius[order[i]] = float(std::sqrt(area / double(i + 1)));
     emit(surface, base, centres, leaves, order, radius, LevelOrder(), out);
 }
 

@@ -107,9 +107,9 @@ void BM_Sample(benchmark::State& state) {
     }
     state.counters["per_joint"] = benchmark::Counter(
         k.joint_count, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-    state.counters["per_channel"] =
-        benchmark::Counter(c.view.clips[0].channel_count,
-                           benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["per_channel"] = benchmark::Counter(
+        c.view.clips[0].channel_count,
+        benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_Sample);
 
@@ -156,9 +156,9 @@ void BM_Pose(benchmark::State& state) {
         benchmark::ClobberMemory();
         t += 1.0f / 60.0f;
     }
-    state.counters["per_joint"] =
-        benchmark::Counter(c.view.skeleton.joint_count,
-                           benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["per_joint"] = benchmark::Counter(
+        c.view.skeleton.joint_count,
+        benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_Pose);
 
@@ -179,7 +179,8 @@ const SkinMesh& skin_mesh(int which) {
         for (int i = 0; i < copies; ++i) {
             m.joints.insert(m.joints.end(), c.scene.joints.begin(), c.scene.joints.end());
             m.weights.insert(m.weights.end(), c.scene.weights.begin(), c.scene.weights.end());
-            m.positions.insert(m.positions.end(), c.scene.positions.begin(), c.scene.positions.end());
+            m.positions.insert(m.positions.end(), c.scene.positions.begin(),
+                               c.scene.positions.end());
             m.normals.insert(m.normals.end(), c.scene.normals.begin(), c.scene.normals.end());
         }
     } else {
@@ -247,7 +248,8 @@ void BM_Skin(benchmark::State& state) {
     const double bound_ns = kBytesPerVertex / read_bandwidth() * 1e9;
     state.counters["bound_ns"] = bound_ns;
     state.counters["x_bound"] = ns_per_vertex / bound_ns;
-    state.SetBytesProcessed(int64_t(state.iterations()) * int64_t(m.count()) * int64_t(kBytesPerVertex));
+    state.SetBytesProcessed(int64_t(state.iterations()) * int64_t(m.count()) *
+                            int64_t(kBytesPerVertex));
     state.SetLabel(std::string(method >= 2 ? "dqs" : "lbs") + (scalar ? "_scalar" : "_simd") +
                    (stretched ? " stretched" : ""));
 }

@@ -46,8 +46,9 @@ Fixture* fixture(uint32_t points) {
 void report(benchmark::State& state, size_t points, size_t bytes_per_point) {
     state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(points));
     state.SetBytesProcessed(int64_t(state.iterations()) * int64_t(points * bytes_per_point));
-    state.counters["per_point"] = benchmark::Counter(
-        double(points), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["per_point"] =
+        benchmark::Counter(double(points), benchmark::Counter::kIsIterationInvariantRate |
+                                               benchmark::Counter::kInvert);
 }
 
 // Alg. 6.3: host index + 2 barycentrics in, 3 vertex positions/normals gathered (random
@@ -80,8 +81,7 @@ void BM_RecomputeRelevance(benchmark::State& state) {
     if (!f) return state.SkipWithError("fixture failed");
     const stipple::PointsView& p = f->asset.points;
     for (auto _ : state) {
-        stipple::recompute_relevance(p, f->pos.data(), f->scale.data(), p.radius,
-                                     f->radius.data());
+        stipple::recompute_relevance(p, f->pos.data(), f->scale.data(), p.radius, f->radius.data());
         benchmark::ClobberMemory();
     }
     double nbrs = double(p.neighbour_count) / double(p.point_count);

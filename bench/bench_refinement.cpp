@@ -99,12 +99,14 @@ void BM_RefineCloseUp(benchmark::State& state) {
     const stipple::SizeParams s = view(*f, 8.0f);
     const stipple::MeshView& m = f->domain;
     for (auto _ : state) {
-        stipple::refine_points(&f->refinement, m, m.positions, m.normals, nullptr, s, true, &f->out, nullptr);
+        stipple::refine_points(&f->refinement, m, m.positions, m.normals, nullptr, s, true, &f->out,
+                               nullptr);
         benchmark::ClobberMemory();
     }
     state.counters["extra_points"] = double(f->out.count);
-    state.counters["per_point"] = benchmark::Counter(
-        double(f->out.count), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["per_point"] =
+        benchmark::Counter(double(f->out.count), benchmark::Counter::kIsIterationInvariantRate |
+                                                     benchmark::Counter::kInvert);
 }
 
 // The simplest alternative: bake that many more points and place + update them all.
@@ -116,12 +118,15 @@ void BM_PlaceAndRelevanceOfADenseBake(benchmark::State& state) {
     std::vector<float> scale(p.point_count);
     stipple::relevance_scale(p, f->bind.data(), scale.data());
     for (auto _ : state) {
-        stipple::place_points(p, m.indices, m.positions, m.normals, f->positions.data(), f->normals.data());
-        stipple::recompute_relevance(p, f->positions.data(), scale.data(), p.radius, f->radius.data());
+        stipple::place_points(p, m.indices, m.positions, m.normals, f->positions.data(),
+                              f->normals.data());
+        stipple::recompute_relevance(p, f->positions.data(), scale.data(), p.radius,
+                                     f->radius.data());
         benchmark::ClobberMemory();
     }
-    state.counters["per_point"] = benchmark::Counter(
-        double(p.point_count), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["per_point"] =
+        benchmark::Counter(double(p.point_count), benchmark::Counter::kIsIterationInvariantRate |
+                                                      benchmark::Counter::kInvert);
 }
 
 void BM_RefineFullViewNothingNeeded(benchmark::State& state) {
@@ -130,12 +135,14 @@ void BM_RefineFullViewNothingNeeded(benchmark::State& state) {
     stipple::SizeParams s = view(*f, 0.5f);
     const stipple::MeshView& m = f->domain;
     for (auto _ : state) {
-        stipple::refine_points(&f->refinement, m, m.positions, m.normals, nullptr, s, true, &f->out, nullptr);
+        stipple::refine_points(&f->refinement, m, m.positions, m.normals, nullptr, s, true, &f->out,
+                               nullptr);
         benchmark::ClobberMemory();
     }
     state.counters["extra_points"] = double(f->out.count);
-    state.counters["per_triangle"] = benchmark::Counter(
-        double(m.triangle_count), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["per_triangle"] =
+        benchmark::Counter(double(m.triangle_count), benchmark::Counter::kIsIterationInvariantRate |
+                                                         benchmark::Counter::kInvert);
 }
 
 void BM_TriangulateAtLoad(benchmark::State& state) {

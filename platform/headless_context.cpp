@@ -17,7 +17,9 @@ namespace stipple::platform {
 
 namespace {
 
-void* egl_proc(const char* name) { return reinterpret_cast<void*>(eglGetProcAddress(name)); }
+void* egl_proc(const char* name) {
+    return reinterpret_cast<void*>(eglGetProcAddress(name));
+}
 
 #ifdef STIPPLE_HAVE_OSMESA
 void* osmesa_proc(const char* name) {
@@ -40,9 +42,19 @@ std::string egl_error(const char* what) {
 ContextStatus make_es3_context(EGLDisplay display, HeadlessContext* out) {
     EGLint major = 0, minor = 0;
     if (!eglInitialize(display, &major, &minor)) return failed(egl_error("eglInitialize"));
-    const EGLint config_attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE,
-                                     EGL_OPENGL_ES3_BIT, EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8,
-                                     EGL_BLUE_SIZE, 8, EGL_DEPTH_SIZE, 24, EGL_NONE};
+    const EGLint config_attribs[] = {EGL_SURFACE_TYPE,
+                                     EGL_PBUFFER_BIT,
+                                     EGL_RENDERABLE_TYPE,
+                                     EGL_OPENGL_ES3_BIT,
+                                     EGL_RED_SIZE,
+                                     8,
+                                     EGL_GREEN_SIZE,
+                                     8,
+                                     EGL_BLUE_SIZE,
+                                     8,
+                                     EGL_DEPTH_SIZE,
+                                     24,
+                                     EGL_NONE};
     EGLConfig config = nullptr;
     EGLint count = 0;
     if (!eglChooseConfig(display, config_attribs, &config, 1, &count) || count == 0) {
@@ -103,9 +115,8 @@ ContextStatus try_osmesa(const HeadlessConfig& config, HeadlessContext* out) {
     if (!context) return failed("OSMesaCreateContextExt failed");
     size_t bytes = size_t(config.width) * size_t(config.height) * 4;
     out->osmesa_buffer = static_cast<unsigned char*>(std::malloc(bytes));
-    if (!out->osmesa_buffer ||
-        !OSMesaMakeCurrent(context, out->osmesa_buffer, GL_UNSIGNED_BYTE, config.width,
-                           config.height)) {
+    if (!out->osmesa_buffer || !OSMesaMakeCurrent(context, out->osmesa_buffer, GL_UNSIGNED_BYTE,
+                                                  config.width, config.height)) {
         const ContextStatus st = failed("OSMesaMakeCurrent failed");
         OSMesaDestroyContext(context);
         std::free(out->osmesa_buffer);
@@ -126,7 +137,8 @@ ContextStatus try_osmesa(const HeadlessConfig& config, HeadlessContext* out) {
 ContextStatus create_headless_context(const HeadlessConfig& config, HeadlessContext* out) {
     *out = HeadlessContext();
     if (!config.allow_egl && !config.allow_osmesa)
-        return {ContextError::no_backend_allowed, "no headless backend allowed (EGL and OSMesa off)"};
+        return {ContextError::no_backend_allowed,
+                "no headless backend allowed (EGL and OSMesa off)"};
     std::string tried;  // why each backend failed
     if (config.allow_egl) {
         ContextStatus st = try_egl_surfaceless(out);
@@ -151,10 +163,11 @@ ContextStatus create_headless_context(const HeadlessConfig& config, HeadlessCont
     if (out->backend == Backend::none)
         return {ContextError::no_context, "no headless OpenGL context could be created (" +
                                               tried.substr(0, tried.size() - 2) + ")"};
-    auto get_string =
-        reinterpret_cast<PFNGLGETSTRINGPROC>(proc_loader(*out)("glGetString"));
-    const char* renderer = get_string ? reinterpret_cast<const char*>(get_string(GL_RENDERER)) : nullptr;
-    const char* version = get_string ? reinterpret_cast<const char*>(get_string(GL_VERSION)) : nullptr;
+    auto get_string = reinterpret_cast<PFNGLGETSTRINGPROC>(proc_loader(*out)("glGetString"));
+    const char* renderer =
+        get_string ? reinterpret_cast<const char*>(get_string(GL_RENDERER)) : nullptr;
+    const char* version =
+        get_string ? reinterpret_cast<const char*>(get_string(GL_VERSION)) : nullptr;
     out->renderer = renderer ? renderer : "?";
     out->version = version ? version : "?";
     return {};
@@ -185,10 +198,14 @@ void destroy_headless_context(HeadlessContext* context) {
 
 const char* backend_name(Backend backend) {
     switch (backend) {
-        case Backend::none: return "none";
-        case Backend::egl_surfaceless: return "egl-surfaceless";
-        case Backend::egl_device: return "egl-device";
-        case Backend::osmesa: return "osmesa";
+        case Backend::none:
+            return "none";
+        case Backend::egl_surfaceless:
+            return "egl-surfaceless";
+        case Backend::egl_device:
+            return "egl-device";
+        case Backend::osmesa:
+            return "osmesa";
     }
     return "?";
 }

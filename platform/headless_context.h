@@ -22,7 +22,7 @@ struct ContextStatus {
 };
 
 struct HeadlessConfig {
-    int width = 640;            // OSMesa needs a buffer; EGL renders to the caller's FBO
+    int width = 640;  // OSMesa needs a buffer; EGL renders to the caller's FBO
     int height = 480;
     bool allow_egl = true;
     bool allow_osmesa = true;
@@ -34,8 +34,8 @@ struct HeadlessContext {
     void* egl_context = nullptr;
     void* osmesa_context = nullptr;
     unsigned char* osmesa_buffer = nullptr;
-    std::string renderer;       // GL_RENDERER of the context
-    std::string version;        // GL_VERSION
+    std::string renderer;  // GL_RENDERER of the context
+    std::string version;   // GL_VERSION
 };
 
 // Creates a context and makes it current on this thread. On failure the message explains

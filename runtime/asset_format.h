@@ -11,7 +11,7 @@ namespace stipple::format {
 
 constexpr char kMagic[4] = {'S', 'T', 'I', 'P'};
 constexpr uint16_t kVersion = 3;
-constexpr uint16_t kOldestVersion = 2;  // version 2 lacks BNDS and SIDE; the loader still reads it
+constexpr uint16_t kOldestVersion = 2;   // version 2 lacks BNDS and SIDE; the loader still reads it
 constexpr uint16_t kEndianTag = 0xFEFF;  // reads as 0xFFFE on a big-endian machine
 constexpr uint32_t kSectionAlign = 16;
 

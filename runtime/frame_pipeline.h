@@ -30,8 +30,7 @@ struct AnimationState {
 
 struct StageTimes {  // milliseconds
     double sample = 0, skin = 0, place = 0, relevance = 0, refine = 0, size = 0, silhouette = 0,
-           draw = 0,
-           readback = 0;
+           draw = 0, readback = 0;
 };
 
 struct Pipeline {
@@ -54,11 +53,11 @@ struct Pipeline {
     // Points of the frame: the baked hierarchy (point_count) followed by the run-time
     // refinement's extra points (up to refinement_budget); capacity = point_count + budget.
     uint32_t point_capacity = 0;
-    std::unique_ptr<float[]> point_positions, point_normals;    // 3 * capacity
-    std::unique_ptr<float[]> radius_scale;                // point_count, see relevance_scale()
-    std::unique_ptr<float[]> draw_positions, draw_sizes;  // the dots with a size, compacted
-    std::unique_ptr<float[]> rest_radius;                 // point_count
-    std::unique_ptr<float[]> radius, size;                // capacity
+    std::unique_ptr<float[]> point_positions, point_normals;  // 3 * capacity
+    std::unique_ptr<float[]> radius_scale;                    // point_count, see relevance_scale()
+    std::unique_ptr<float[]> draw_positions, draw_sizes;      // the dots with a size, compacted
+    std::unique_ptr<float[]> rest_radius;                     // point_count
+    std::unique_ptr<float[]> radius, size;                    // capacity
     RefinementMesh refinement;
     // The refinement's triangles: a triangulation of the baked points when the bake has enough
     // of them (runtime/point_triangulation.h), else the render mesh.
@@ -66,13 +65,13 @@ struct Pipeline {
     MeshView refinement_domain;
     bool refine_on_points = false;
     std::unique_ptr<uint32_t[]> refined_triangle, refined_index;  // budget
-    uint32_t refined_count = 0;                           // extra points in the last frame
+    uint32_t refined_count = 0;                                   // extra points in the last frame
     RefinementStats refinement_stats;
     std::unique_ptr<uint8_t[]> point_double_sided;  // point_count, or null: runtime/double_sided.h
-    std::unique_ptr<uint8_t[]> triangle_front;            // triangle_count
-    std::unique_ptr<float[]> lines;                       // 6 * edge_count
-    uint32_t points_drawn = 0;                            // size > 0 in the last frame
-    uint32_t lines_drawn = 0;                             // silhouette lines
+    std::unique_ptr<uint8_t[]> triangle_front;      // triangle_count
+    std::unique_ptr<float[]> lines;                 // 6 * edge_count
+    uint32_t points_drawn = 0;                      // size > 0 in the last frame
+    uint32_t lines_drawn = 0;                       // silhouette lines
 };
 
 // Resolves `config` (resolve_frame_config: defaults, limits), takes every buffer a frame needs

@@ -70,7 +70,9 @@ inline Moment neighbour_moment(const PointsView& points, const float* positions,
 
 // Neighbours spread in two directions (eigenvalue ratio above ~1:25) measure area; nearly
 // collinear ones only a length, and keep the mean distance.
-inline bool spans_area(const Moment& m) { return m.i2 > 0.01f * m.trace * m.trace && m.i2 > 0.0f; }
+inline bool spans_area(const Moment& m) {
+    return m.i2 > 0.01f * m.trace * m.trace && m.i2 > 0.0f;
+}
 
 }  // namespace
 
@@ -93,8 +95,8 @@ void relevance_scale(const PointsView& points, const float* bind_point_positions
     }
 }
 
-void recompute_relevance(const PointsView& points, const float* point_positions,
-                         const float* scale, const float* fallback_radius, float* out_radius) {
+void recompute_relevance(const PointsView& points, const float* point_positions, const float* scale,
+                         const float* fallback_radius, float* out_radius) {
     for (uint32_t i = 0; i < points.point_count; ++i) {
         const float k = scale[i];
         if (k > 0.0f) {

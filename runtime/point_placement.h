@@ -23,14 +23,13 @@ void mean_neighbour_distance(const PointsView& points, const float* point_positi
 // (its square follows the local area exactly under linear deformation); points whose
 // neighbours are nearly collinear use the mean neighbour distance instead (stored negated).
 // Points without neighbours get 0.
-void relevance_scale(const PointsView& points, const float* bind_point_positions,
-                     float* out_scale);
+void relevance_scale(const PointsView& points, const float* bind_point_positions, float* out_scale);
 
 // Thesis Alg. 6.4: re-scales every point's relevance radius by how its relevant neighbours
 // lie now: radius = scale * measure in the current pose, so the region of influence (radius^2)
 // grows and shrinks with the surface area around the point. Points without neighbours keep
 // `fallback_radius`.
-void recompute_relevance(const PointsView& points, const float* point_positions,
-                         const float* scale, const float* fallback_radius, float* out_radius);
+void recompute_relevance(const PointsView& points, const float* point_positions, const float* scale,
+                         const float* fallback_radius, float* out_radius);
 
 }  // namespace stipple

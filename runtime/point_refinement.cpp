@@ -1,13 +1,12 @@
 #include "runtime/point_refinement.h"
 
-#include "runtime/refinement_order.h"
-#include "runtime/refinement_sequence.h"
-
 #include <algorithm>
 #include <cmath>
+#include <glm/gtc/type_ptr.hpp>
 #include <new>
 
-#include <glm/gtc/type_ptr.hpp>
+#include "runtime/refinement_order.h"
+#include "runtime/refinement_sequence.h"
 
 namespace stipple {
 
@@ -35,15 +34,14 @@ struct Traversal {
     // Current triangle.
     uint32_t t;
     const uint32_t* tri;
-    float area;     // bind area
-    float stretch;  // current / bind area
-    float density;  // rho0
-    float phase;    // rank offset of the triangle's first extra point, in (0, 1]
-    bool two_sided; // the triangle is double-sided
+    float area;        // bind area
+    float stretch;     // current / bind area
+    float density;     // rho0
+    float phase;       // rank offset of the triangle's first extra point, in (0, 1]
+    bool two_sided;    // the triangle is double-sided
     uint32_t variant;  // the triangle's pattern and corner order
     glm::mat2 to_2d;   // the triangle's isometric frame
 };
-
 
 // Largest number of the triangle's extra points the size rule could draw inside `cell`, from
 // the largest density factor at its corners (1/w^2, N.V and ink are each largest at a corner).
@@ -75,7 +73,8 @@ void emit(Traversal* s, uint32_t k, const glm::vec2& bary) {
     // Outside the view: never drawn, so neither generated nor counted against the budget.
     const glm::vec4 clip = u * s->vertex[s->tri[0]].clip + v * s->vertex[s->tri[1]].clip +
                            w * s->vertex[s->tri[2]].clip;
-    if (!(std::fabs(clip.x) <= clip.w && std::fabs(clip.y) <= clip.w && std::fabs(clip.z) <= clip.w))
+    if (!(std::fabs(clip.x) <= clip.w && std::fabs(clip.y) <= clip.w &&
+          std::fabs(clip.z) <= clip.w))
         return;
     RefinedPoints* o = s->out;
     ++s->wanted;
@@ -96,7 +95,8 @@ void emit(Traversal* s, uint32_t k, const glm::vec2& bary) {
     float inv = len2 > 1e-20f ? 1.0f / std::sqrt(len2) : 0.0f;
     if (s->two_sided) {  // seen from behind: the normal turns toward the viewer
         const float* p = o->positions + size_t(i) * 3;
-        const float facing = n[0] * (s->eye.x - p[0]) + n[1] * (s->eye.y - p[1]) + n[2] * (s->eye.z - p[2]);
+        const float facing =
+            n[0] * (s->eye.x - p[0]) + n[1] * (s->eye.y - p[1]) + n[2] * (s->eye.z - p[2]);
         if (facing < 0.0f) inv = -inv;
     }
     for (int d = 0; d < 3; ++d) o->normals[size_t(i) * 3 + d] = n[d] * inv;
@@ -127,7 +127,7 @@ float hand_over(float ratio) {
 void visit(Traversal* s, const Cell& cell, uint64_t base, uint64_t stride, uint32_t start) {
     if (base > 0xFFFFFFFFull) return;
     const double count = cell_count(*s, cell) - s->phase;  // ranks k + phase <= count
-    if (double(base) > count) return;  // nothing here the size rule could draw
+    if (double(base) > count) return;                      // nothing here the size rule could draw
     const uint32_t own = pattern_points() - start;
     const double fit = std::floor((count - double(base)) / double(stride)) + 1.0;
     const uint32_t n = fit >= double(own) ? own : uint32_t(fit);
@@ -198,7 +198,8 @@ Status refinement_init(RefinementMesh* r, const MeshView& mesh, const PointsView
         f[0] = ok ? ab : 0.0f;
         f[1] = ok ? glm::dot(c - a, (b - a) / ab) : 0.0f;
         f[2] = ok ? 2.0f * area / ab : 0.0f;
-        longest[t] = std::max({glm::dot(b - a, b - a), glm::dot(c - b, c - b), glm::dot(a - c, a - c)});
+        longest[t] =
+            std::max({glm::dot(b - a, b - a), glm::dot(c - b, c - b), glm::dot(a - c, a - c)});
         total_area += r->bind_area[t];
     }
     // rho0: the baked points' mean density over the surface (bind pose). The region of the
@@ -222,10 +223,12 @@ Status refinement_init(RefinementMesh* r, const MeshView& mesh, const PointsView
         // the law, small ones (under one point each) follow the mean.
         constexpr double kPrior = 4.0;
         for (uint32_t t = 0; t < n; ++t) r->density[t] = 0.0f;
-        for (uint32_t i = 0; i < points.point_count; ++i) r->density[points.host_triangle[i]] += 1.0f;
+        for (uint32_t i = 0; i < points.point_count; ++i)
+            r->density[points.host_triangle[i]] += 1.0f;
         for (uint32_t t = 0; t < n; ++t) {
             const double hosted = r->density[t];
-            r->density[t] = rho0 > 0.0 ? float((hosted + kPrior) / (r->bind_area[t] + kPrior / rho0)) : 0.0f;
+            r->density[t] =
+                rho0 > 0.0 ? float((hosted + kPrior) / (r->bind_area[t] + kPrior / rho0)) : 0.0f;
             r->root_depth[t] = uint8_t(root_depth(r->bind_area[t], longest[t], r->density[t]));
         }
     }
@@ -235,7 +238,8 @@ Status refinement_init(RefinementMesh* r, const MeshView& mesh, const PointsView
         const glm::vec2 b = refinement_barycentric(r->frame.get() + size_t(t) * 3, r->root_depth[t],
                                                    triangle_variant(t), 0);
         for (int d = 0; d < 3; ++d)
-            first[size_t(t) * 3 + d] = b.x * mesh.positions[tri[0] * 3 + d] + b.y * mesh.positions[tri[1] * 3 + d] +
+            first[size_t(t) * 3 + d] = b.x * mesh.positions[tri[0] * 3 + d] +
+                                       b.y * mesh.positions[tri[1] * 3 + d] +
                                        (1.0f - b.x - b.y) * mesh.positions[tri[2] * 3 + d];
     }
     if (!first_point_phases(n, first.get(), r->bind_area.get(), points.point_count,

@@ -31,9 +31,8 @@
 //     refined areas drops by that fraction; RefinementStats::budget_scale reports it.
 #pragma once
 #include <cstdint>
-#include <memory>
-
 #include <glm/glm.hpp>
+#include <memory>
 
 #include "runtime/asset.h"
 #include "runtime/refinement_sequence.h"
@@ -43,24 +42,24 @@ namespace stipple {
 
 // Per-vertex values of one frame that the refinement interpolates over triangles.
 struct RefinementVertex {
-    glm::vec4 clip;  // clip-space position
-    float need;      // max(N.V, 0) * ink: the density the size rule asks for, without 1/w^2
-    float need_back; // the same for the flipped normal (double-sided triangles seen from behind)
+    glm::vec4 clip;    // clip-space position
+    float need;        // max(N.V, 0) * ink: the density the size rule asks for, without 1/w^2
+    float need_back;   // the same for the flipped normal (double-sided triangles seen from behind)
     uint32_t outside;  // frustum outcode: bit set per clip plane the vertex lies beyond
 };
 
 // Per-triangle data computed once at load from the bind pose, and per-vertex scratch.
 struct RefinementMesh {
     uint32_t triangle_count = 0;
-    std::unique_ptr<float[]> bind_area;      // per triangle
-    std::unique_ptr<float[]> frame;          // per triangle: 2D isometric corners B.x, C.x, C.y
-    std::unique_ptr<uint8_t[]> root_depth;   // longest-edge bisections before the sequence
-    std::unique_ptr<float[]> density;        // baked points per unit bind area, per triangle
-    std::unique_ptr<float[]> phase;          // rank offset of the first extra point, (0, 1]
-    std::unique_ptr<float[]> fade;           // per frame: size factor of the baked points here
+    std::unique_ptr<float[]> bind_area;          // per triangle
+    std::unique_ptr<float[]> frame;              // per triangle: 2D isometric corners B.x, C.x, C.y
+    std::unique_ptr<uint8_t[]> root_depth;       // longest-edge bisections before the sequence
+    std::unique_ptr<float[]> density;            // baked points per unit bind area, per triangle
+    std::unique_ptr<float[]> phase;              // rank offset of the first extra point, (0, 1]
+    std::unique_ptr<float[]> fade;               // per frame: size factor of the baked points here
     std::unique_ptr<RefinementVertex[]> vertex;  // per vertex, rewritten every frame
-    float finest_density = 0.0f;             // rho0: baked points per unit bind area, finest level
-    bool hand_over = true;                   // baked points fade in close-ups (mesh domain)
+    float finest_density = 0.0f;  // rho0: baked points per unit bind area, finest level
+    bool hand_over = true;        // baked points fade in close-ups (mesh domain)
 };
 
 // Extra points of one frame, structure of arrays. Positions/normals/radius go straight into the
@@ -72,7 +71,7 @@ struct RefinedPoints {
     float* normals = nullptr;    // 3 per point
     float* radius = nullptr;     // current relevance radius (region = radius^2)
     uint32_t* triangle = nullptr;
-    uint32_t* index = nullptr;   // k: rank of the point in its triangle's sequence
+    uint32_t* index = nullptr;  // k: rank of the point in its triangle's sequence
 };
 
 struct RefinementStats {
@@ -93,7 +92,6 @@ enum class RefinementDomain { mesh, points };
 [[nodiscard]] Status refinement_init(RefinementMesh* r, const MeshView& mesh,
                                      const PointsView& points, const float* bind_point_positions,
                                      RefinementDomain domain = RefinementDomain::mesh);
-
 
 // Generates the frame's extra points: `positions`/`normals` are the posed mesh vertices
 // (3 floats each); `stretch` false keeps bind-pose regions (relevance updates off);

@@ -63,7 +63,8 @@ struct SurfaceReach {
     std::unique_ptr<float[]> sphere;          // per triangle: centroid xyz, radius
 
     glm::vec3 vertex(uint32_t v) const {
-        return glm::vec3(mesh->positions[v * 3], mesh->positions[v * 3 + 1], mesh->positions[v * 3 + 2]);
+        return glm::vec3(mesh->positions[v * 3], mesh->positions[v * 3 + 1],
+                         mesh->positions[v * 3 + 2]);
     }
 
     bool build(const MeshView& m) {
@@ -101,8 +102,9 @@ struct SurfaceReach {
             const glm::vec3 centre = (a + b + cc) / 3.0f;
             float* sp = sphere.get() + size_t(t) * 4;
             sp[0] = centre.x, sp[1] = centre.y, sp[2] = centre.z;
-            sp[3] = std::sqrt(std::max({glm::dot(a - centre, a - centre), glm::dot(b - centre, b - centre),
-                                        glm::dot(cc - centre, cc - centre)}));
+            sp[3] = std::sqrt(
+                std::max({glm::dot(a - centre, a - centre), glm::dot(b - centre, b - centre),
+                          glm::dot(cc - centre, cc - centre)}));
         }
         return true;
     }
@@ -139,17 +141,20 @@ double surface_area(const MeshView& m) {
     double area = 0.0;
     for (uint32_t t = 0; t < m.triangle_count; ++t) {
         const uint32_t* tri = m.indices + size_t(t) * 3;
-        const glm::vec3 a(m.positions[tri[0] * 3], m.positions[tri[0] * 3 + 1], m.positions[tri[0] * 3 + 2]);
-        const glm::vec3 b(m.positions[tri[1] * 3], m.positions[tri[1] * 3 + 1], m.positions[tri[1] * 3 + 2]);
-        const glm::vec3 c(m.positions[tri[2] * 3], m.positions[tri[2] * 3 + 1], m.positions[tri[2] * 3 + 2]);
+        const glm::vec3 a(m.positions[tri[0] * 3], m.positions[tri[0] * 3 + 1],
+                          m.positions[tri[0] * 3 + 2]);
+        const glm::vec3 b(m.positions[tri[1] * 3], m.positions[tri[1] * 3 + 1],
+                          m.positions[tri[1] * 3 + 2]);
+        const glm::vec3 c(m.positions[tri[2] * 3], m.positions[tri[2] * 3 + 1],
+                          m.positions[tri[2] * 3 + 2]);
         const float twice = glm::length(glm::cross(b - a, c - a));
         if (std::isfinite(twice)) area += 0.5 * double(twice);
     }
     return area;
 }
 
-Status triangulate_points(uint32_t count, const float* positions, const float* normals,
-                          double area, const MeshView* surface, const uint32_t* host_triangle,
+Status triangulate_points(uint32_t count, const float* positions, const float* normals, double area,
+                          const MeshView* surface, const uint32_t* host_triangle,
                           PointTriangulation* out) {
     *out = PointTriangulation();
     if (count < 3 || !(area > 0.0)) return {};
@@ -187,7 +192,9 @@ Status triangulate_points(uint32_t count, const float* positions, const float* n
                 candidates[found++] = c;
             } else {
                 Candidate* worst = std::max_element(candidates, candidates + found,
-                    [](const Candidate& x, const Candidate& y) { return x.distance2 < y.distance2; });
+                                                    [](const Candidate& x, const Candidate& y) {
+                                                        return x.distance2 < y.distance2;
+                                                    });
                 if (c.distance2 < worst->distance2) *worst = c;
             }
         });

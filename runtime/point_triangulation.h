@@ -39,8 +39,7 @@ struct PointTriangulation {
 // on it, points are joined only if they are within reach along the surface, not merely in
 // space. Fails only with out_of_memory.
 [[nodiscard]] Status triangulate_points(uint32_t count, const float* positions,
-                                        const float* normals, double area,
-                                        const MeshView* surface, const uint32_t* host_triangle,
-                                        PointTriangulation* out);
+                                        const float* normals, double area, const MeshView* surface,
+                                        const uint32_t* host_triangle, PointTriangulation* out);
 
 }  // namespace stipple

@@ -1,13 +1,12 @@
 #include "runtime/refinement_order.h"
 
-#include "runtime/spatial_grid.h"
-
 #include <algorithm>
 #include <cmath>
+#include <glm/glm.hpp>
 #include <memory>
 #include <new>
 
-#include <glm/glm.hpp>
+#include "runtime/spatial_grid.h"
 
 namespace stipple {
 
@@ -18,7 +17,9 @@ std::unique_ptr<T[]> array(size_t n) {
     return std::unique_ptr<T[]>(new (std::nothrow) T[n > 0 ? n : 1]);
 }
 
-glm::vec3 point3(const float* p, uint32_t i) { return glm::vec3(p[i * 3], p[i * 3 + 1], p[i * 3 + 2]); }
+glm::vec3 point3(const float* p, uint32_t i) {
+    return glm::vec3(p[i * 3], p[i * 3 + 1], p[i * 3 + 2]);
+}
 
 // Max-heap of triangles keyed by dist, with decrease-key.
 struct Heap {
@@ -32,7 +33,8 @@ struct Heap {
         slot[item[b]] = b;
     }
     void up(uint32_t i) {
-        while (i > 0 && key[item[(i - 1) / 2]] < key[item[i]]) swap(i, (i - 1) / 2), i = (i - 1) / 2;
+        while (i > 0 && key[item[(i - 1) / 2]] < key[item[i]])
+            swap(i, (i - 1) / 2), i = (i - 1) / 2;
     }
     void down(uint32_t i) {
         for (;;) {
@@ -78,7 +80,8 @@ bool first_point_phases(uint32_t triangle_count, const float* first_points, cons
         heap.item = array<uint32_t>(n);
         heap.slot = array<uint32_t>(n);
         heap.key = dist.get();
-        if (!dist || !heap.item || !heap.slot || !baked_grid.build(baked, baked_count, reach, nullptr) ||
+        if (!dist || !heap.item || !heap.slot ||
+            !baked_grid.build(baked, baked_count, reach, nullptr) ||
             !tri_grid.build(first_points, n, 1.5f * spacing, area))
             return false;
         for (uint32_t t = 0; t < n; ++t) {
@@ -87,7 +90,8 @@ bool first_point_phases(uint32_t triangle_count, const float* first_points, cons
             if (!(area[t] > 0.0f)) continue;
             const glm::vec3 p = point3(first_points, t);
             float& d = dist[t];
-            baked_grid.near(p, reach, [&](uint32_t i) { d = std::min(d, glm::length(point3(baked, i) - p)); });
+            baked_grid.near(
+                p, reach, [&](uint32_t i) { d = std::min(d, glm::length(point3(baked, i) - p)); });
             heap.push(t);
         }
         while (heap.size > 0) {

@@ -18,7 +18,7 @@ namespace stipple {
 // (3 floats). Triangles with area <= 0 (area[t]) rank last. Uses temporary memory (load time
 // only); returns false if it cannot get it.
 [[nodiscard]] bool first_point_phases(uint32_t triangle_count, const float* first_points,
-                                      const float* area, uint32_t baked_count,
-                                      const float* baked, float* phase);
+                                      const float* area, uint32_t baked_count, const float* baked,
+                                      float* phase);
 
 }  // namespace stipple

@@ -10,7 +10,8 @@ namespace {
 #include "runtime/refinement_pattern.inc"
 
 // The six orders of a cell's corners.
-constexpr uint8_t kCornerOrder[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
+constexpr uint8_t kCornerOrder[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1},
+                                        {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
 
 }  // namespace
 
@@ -37,22 +38,33 @@ Cell quarter(const Cell& cell, uint32_t digit) {
     const glm::vec2 ab = 0.5f * (cell.c[0] + cell.c[1]), bc = 0.5f * (cell.c[1] + cell.c[2]),
                     ca = 0.5f * (cell.c[2] + cell.c[0]);
     switch (digit) {
-        case 1: return Cell{{cell.c[0], ab, ca}};
-        case 2: return Cell{{ab, cell.c[1], bc}};
-        case 3: return Cell{{ca, bc, cell.c[2]}};
-        default: return Cell{{bc, ca, ab}};
+        case 1:
+            return Cell{{cell.c[0], ab, ca}};
+        case 2:
+            return Cell{{ab, cell.c[1], bc}};
+        case 3:
+            return Cell{{ca, bc, cell.c[2]}};
+        default:
+            return Cell{{bc, ca, ab}};
     }
 }
 
 Cell root_cell(const glm::mat2& to_2d, uint32_t depth, uint32_t j) {
     Cell cell = kWholeTriangle;
-    for (uint32_t level = 0; level < depth; ++level) cell = bisect(cell, to_2d, int((j >> level) & 1u));
+    for (uint32_t level = 0; level < depth; ++level)
+        cell = bisect(cell, to_2d, int((j >> level) & 1u));
     return cell;
 }
 
-uint32_t pattern_points() { return kPatternPoints; }
-uint32_t sub_cell_start() { return kPatternPoints / 4; }
-uint32_t variant_count() { return kPatterns * 6; }
+uint32_t pattern_points() {
+    return kPatternPoints;
+}
+uint32_t sub_cell_start() {
+    return kPatternPoints / 4;
+}
+uint32_t variant_count() {
+    return kPatterns * 6;
+}
 
 uint32_t triangle_variant(uint32_t t) {
     uint32_t h = t * 0x9E3779B1u + 0x7F4A7C15u;

@@ -12,7 +12,6 @@
 //     each with the pattern again from kSubCellStart on.
 #pragma once
 #include <cstdint>
-
 #include <glm/glm.hpp>
 
 namespace stipple {

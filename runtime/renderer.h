@@ -17,7 +17,7 @@ namespace stipple {
 // FrameConfig (runtime/frame_config.h, the one place for their defaults and limits), the
 // capacities from the asset.
 struct RendererConfig {
-    int width = 0;                      // pixels
+    int width = 0;  // pixels
     int height = 0;
     uint32_t max_points = 0;            // capacity of the point buffers
     uint32_t vertex_count = 0;          // capacity of the mesh vertex buffer

@@ -3,9 +3,8 @@
 // sort: no allocation per cell, and none at all after build().
 #pragma once
 #include <cstdint>
-#include <memory>
-
 #include <glm/glm.hpp>
+#include <memory>
 
 namespace stipple {
 
@@ -18,9 +17,12 @@ struct SpatialGrid {
 
     glm::ivec3 at(const glm::vec3& p) const { return glm::ivec3(glm::floor(p / cell)); }
     uint32_t bucket(const glm::ivec3& c) const {
-        return (uint32_t(c.x) * 73856093u ^ uint32_t(c.y) * 19349663u ^ uint32_t(c.z) * 83492791u) & mask;
+        return (uint32_t(c.x) * 73856093u ^ uint32_t(c.y) * 19349663u ^ uint32_t(c.z) * 83492791u) &
+               mask;
     }
-    glm::vec3 point(uint32_t i) const { return glm::vec3(points[i * 3], points[i * 3 + 1], points[i * 3 + 2]); }
+    glm::vec3 point(uint32_t i) const {
+        return glm::vec3(points[i * 3], points[i * 3 + 1], points[i * 3 + 2]);
+    }
 
     // Indexes the points i < n with use[i] > 0 (all if use is null). False if out of memory.
     [[nodiscard]] bool build(const float* p, uint32_t n, float cell_size, const float* use);

@@ -30,9 +30,9 @@ typedef enum stipple_result {
     STIPPLE_OK = 0,
     STIPPLE_ERROR_INVALID_ARGUMENT,
     STIPPLE_ERROR_IO,
-    STIPPLE_ERROR_BAD_ASSET,           /* truncated, corrupted or inconsistent asset */
+    STIPPLE_ERROR_BAD_ASSET, /* truncated, corrupted or inconsistent asset */
     STIPPLE_ERROR_UNSUPPORTED_VERSION,
-    STIPPLE_ERROR_GL,                  /* missing GL entry point, shader or framebuffer error */
+    STIPPLE_ERROR_GL, /* missing GL entry point, shader or framebuffer error */
     STIPPLE_ERROR_OUT_OF_MEMORY
 } stipple_result;
 
@@ -44,24 +44,24 @@ typedef void* (*stipple_get_proc_fn)(const char* name);
  * outside its range makes stipple_player_create and stipple_player_desc_resolve return
  * STIPPLE_ERROR_INVALID_ARGUMENT. */
 typedef struct stipple_player_desc {
-    int width, height;          /* offscreen image size in [16, 16384]; 0: 640 x 480 */
-    float zoom;                 /* in [0.01, 1000]; 0: 1 (rest-pose bounds fit the view) */
-    float yaw_degrees;          /* camera orbit around the vertical axis, in [-3600, 3600] */
-    float pitch_degrees;        /* camera elevation in [-90, 90] (90: looking straight down) */
-    int use_constant_tone;      /* 0: Lambert lighting; 1: constant_tone everywhere */
-    float constant_tone;        /* target tone in [0, 1] when use_constant_tone */
-    float max_point_size;       /* stipple diameter in pixels, in [0.5, 32]; 0: 3 */
-    int no_relevance_update;    /* 1: keep rest-pose relevance (thesis Alg. 6.3 only) */
-    int no_silhouettes;         /* 1: no silhouette lines */
+    int width, height;            /* offscreen image size in [16, 16384]; 0: 640 x 480 */
+    float zoom;                   /* in [0.01, 1000]; 0: 1 (rest-pose bounds fit the view) */
+    float yaw_degrees;            /* camera orbit around the vertical axis, in [-3600, 3600] */
+    float pitch_degrees;          /* camera elevation in [-90, 90] (90: looking straight down) */
+    int use_constant_tone;        /* 0: Lambert lighting; 1: constant_tone everywhere */
+    float constant_tone;          /* target tone in [0, 1] when use_constant_tone */
+    float max_point_size;         /* stipple diameter in pixels, in [0.5, 32]; 0: 3 */
+    int no_relevance_update;      /* 1: keep rest-pose relevance (thesis Alg. 6.3 only) */
+    int no_silhouettes;           /* 1: no silhouette lines */
     int dual_quaternion_skinning; /* 1: DQS instead of linear blend skinning */
-    int dark_tone_set;          /* 1: use dark_tone; 0: 0.6 */
-    float dark_tone;            /* darkest tone lighting asks for, in [0, 1] (thesis §8.4) */
-    int refinement_budget;      /* extra points per frame where the baked hierarchy runs out
-                                   (close-ups, stretch), at most 4194304; 0: 262144, < 0: none.
-                                   Memory for them is taken at create: about 72 bytes per
-                                   point. */
-    uint32_t background_rgb;    /* 0xRRGGBB; used only when background_set */
-    int background_set;         /* 0: white paper (0xFFFFFF) */
+    int dark_tone_set;            /* 1: use dark_tone; 0: 0.6 */
+    float dark_tone;              /* darkest tone lighting asks for, in [0, 1] (thesis §8.4) */
+    int refinement_budget;        /* extra points per frame where the baked hierarchy runs out
+                                     (close-ups, stretch), at most 4194304; 0: 262144, < 0: none.
+                                     Memory for them is taken at create: about 72 bytes per
+                                     point. */
+    uint32_t background_rgb;      /* 0xRRGGBB; used only when background_set */
+    int background_set;           /* 0: white paper (0xFFFFFF) */
     stipple_get_proc_fn get_proc_address; /* required */
 } stipple_player_desc;
 
@@ -81,8 +81,7 @@ int stipple_asset_find_clip(const stipple_asset* asset, const char* name_or_inde
  * background_set 1, refinement_budget -1 for none, constant_tone 0 without
  * use_constant_tone) to `out`; get_proc_address is copied. STIPPLE_ERROR_INVALID_ARGUMENT if
  * a value is outside its range. `out` may be `in`. */
-stipple_result stipple_player_desc_resolve(const stipple_player_desc* in,
-                                          stipple_player_desc* out);
+stipple_result stipple_player_desc_resolve(const stipple_player_desc* in, stipple_player_desc* out);
 
 /* The asset must outlive the player. Fails with STIPPLE_ERROR_INVALID_ARGUMENT (a setting out
  * of range, no get_proc_address), STIPPLE_ERROR_GL or STIPPLE_ERROR_OUT_OF_MEMORY. */
@@ -94,8 +93,8 @@ void stipple_player_draw(stipple_player* player, int clip, float time_seconds);
 /* Layers clip `clip2` at `time2` over `clip` at `time` with weight `weight2`, clamped to
  * [0, 1] (0: only `clip`; ramp it from 0 to 1 for a crossfade; clip2 -1: no layer) and draws.
  * Both clips loop. */
-void stipple_player_draw_blend(stipple_player* player, int clip, float time, int clip2,
-                               float time2, float weight2);
+void stipple_player_draw_blend(stipple_player* player, int clip, float time, int clip2, float time2,
+                               float weight2);
 /* width * height * 4 bytes, bottom row first (GL order). */
 void stipple_player_read_rgba(stipple_player* player, uint8_t* rgba);
 uint32_t stipple_player_points_drawn(const stipple_player* player);

@@ -1,7 +1,6 @@
 // Stipple sizing: target tone -> dot diameter in pixels (thesis ch. 3).
 #pragma once
 #include <cstdint>
-
 #include <glm/glm.hpp>
 
 #include "runtime/frame_config.h"
@@ -12,15 +11,15 @@ namespace stipple {
 // are the defaults of runtime/frame_config.h's table, for callers that size points directly.
 struct SizeParams {
     glm::mat4 view_projection = glm::mat4(1.0f);
-    glm::vec3 eye = glm::vec3(0.0f);        // camera position (world)
+    glm::vec3 eye = glm::vec3(0.0f);                                // camera position (world)
     float viewport_height = float(kFrameSettings.height.fallback);  // pixels
     float max_point_size = kFrameSettings.max_point_size.fallback;  // MaximumPtSize, pixels
     float smooth_slope = kFrameSettings.smooth_slope.fallback;      // Alg. 3.2's smoothSlope, > 1
     float constant_tone = kFrameSettings.constant_tone.fallback;    // in [0,1]; < 0: Lambert
-    glm::vec3 light_direction = glm::vec3(0.0f, 0.0f, 1.0f);  // towards the light, unit
+    glm::vec3 light_direction = glm::vec3(0.0f, 0.0f, 1.0f);        // towards the light, unit
     // Target tone where N.L <= 0: the darkest tone lighting asks for (thesis §8.4's limit).
     float dark_tone = kFrameSettings.dark_tone.fallback;
-    float light_tone = 0.0f;                // target tone where N.L = 1
+    float light_tone = 0.0f;  // target tone where N.L = 1
     // Dots overlap as tone rises, so ink laid down is not darkness seen. Ink asked for tone T
     // is T (1 + overlap_gain T^overlap_power): 2% more at 0.3, 12% at 0.6, 35% at 0.9, 46% at
     // 1 (overlap_gain 0 turns it off). Fitted to tone measured over the corpus at zoom 0.25 to
@@ -75,9 +74,9 @@ inline float smooth_point_size(float target_tone, float region_px, float max_poi
 }
 
 // Sizes every point: target tone (constant, or Lambert from one directional light) turned into
-// ink by ink_for_tone, the region of influence projected to the screen (§3.1.1: radius times pixels per unit at the
-// point's depth, squared) and reduced by the slope factor N.V (§3.1.2), then Alg. 3.2.
-// Back-facing points get size 0.
+// ink by ink_for_tone, the region of influence projected to the screen (§3.1.1: radius times pixels
+// per unit at the point's depth, squared) and reduced by the slope factor N.V (§3.1.2), then
+// Alg. 3.2. Back-facing points get size 0.
 void size_stipples(uint32_t count, const float* positions, const float* normals,
                    const float* radius, const SizeParams& params, float* out_size);
 

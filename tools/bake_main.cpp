@@ -200,7 +200,8 @@ int main(int argc, char** argv) {
 
     Progress progress;
     progress.enabled = !o.quiet && isatty(fileno(stderr));
-    if (const char* delay = std::getenv("STIPPLE_PROGRESS_DELAY")) progress.delay = std::atof(delay);
+    if (const char* delay = std::getenv("STIPPLE_PROGRESS_DELAY"))
+        progress.delay = std::atof(delay);
     const RawScene scene = import(o);
     on_progress("import", 1, &progress);
 

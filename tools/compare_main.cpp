@@ -114,8 +114,8 @@ int main(int argc, char** argv) {
     j["shift"] = shift;
     stipple::cli::print_json(j);
     std::string error;
-    if (!diff_path.empty() &&
-        !stipple::image::write_png(diff_path.c_str(), golden.w, golden.h, diff.data(), false, &error)) {
+    if (!diff_path.empty() && !stipple::image::write_png(diff_path.c_str(), golden.w, golden.h,
+                                                         diff.data(), false, &error)) {
         std::fprintf(stderr, "stipple-compare: %s\n", error.c_str());
         return 2;
     }

@@ -18,7 +18,9 @@ void set_error(std::string* error, const std::string& message) {
     if (error) *error = message;
 }
 
-bool is_inside_pixel(const uint8_t* p) { return luminance(p) > 0.99; }
+bool is_inside_pixel(const uint8_t* p) {
+    return luminance(p) > 0.99;
+}
 
 // Felzenszwalb-Huttenlocher 1D squared distance transform of f (n samples) into d.
 // v and z are scratch of n and n + 1 entries. Differences of f are taken before adding the
@@ -105,8 +107,7 @@ bool contains(const std::vector<uint64_t>& sorted, uint64_t id) {
 }
 
 // True when the dot's centre pixel is more than `margin` px inside the mask.
-bool deep_inside(const Dot& d, const Mask& mask, const std::vector<float>& distance,
-                 float margin) {
+bool deep_inside(const Dot& d, const Mask& mask, const std::vector<float>& distance, float margin) {
     const int x = int(std::floor(d.x)), y = int(std::floor(d.y));
     if (!mask.at(x, y)) return false;
     return distance[size_t(y) * size_t(mask.width) + size_t(x)] > margin;
@@ -149,9 +150,8 @@ class NearestTree {
         const bool y = (y1 - y0) > (x1 - x0);
         const size_t mid = lo + (hi - lo) / 2;
         std::nth_element(order_.begin() + long(lo), order_.begin() + long(mid),
-                         order_.begin() + long(hi), [&](uint32_t a, uint32_t b) {
-                             return coord(a, y) < coord(b, y);
-                         });
+                         order_.begin() + long(hi),
+                         [&](uint32_t a, uint32_t b) { return coord(a, y) < coord(b, y); });
         split_y_[mid] = y;
         build(lo, mid);
         build(mid + 1, hi);
@@ -365,7 +365,8 @@ Evenness evenness(const std::vector<Dot>& dots, const Mask& mask, int block) {
         const int bw = mask.width / block, bh = mask.height / block;
         std::vector<uint32_t> hits(size_t(bw) * size_t(bh), 0);
         for (size_t i : counted) {
-            const int bx = int(std::floor(dots[i].x)) / block, by = int(std::floor(dots[i].y)) / block;
+            const int bx = int(std::floor(dots[i].x)) / block,
+                      by = int(std::floor(dots[i].y)) / block;
             if (bx < bw && by < bh) ++hits[size_t(by) * size_t(bw) + size_t(bx)];
         }
         for (int by = 0; by < bh; ++by)

@@ -32,7 +32,8 @@ struct Image {
     std::vector<uint8_t> rgba;
 };
 
-// Rec.709 luminance of an RGBA8 pixel in [0, 1] (the weights the frame tests use, tests/common/fixtures.h).
+// Rec.709 luminance of an RGBA8 pixel in [0, 1] (the weights the frame tests use,
+// tests/common/fixtures.h).
 double luminance(const uint8_t* rgba_pixel);
 
 // Reads any PNG stb can decode (grey, grey+alpha, RGB, RGBA) as RGBA8.

@@ -38,9 +38,9 @@ const Vec kA = {0.0, 0.0}, kB = {1.0, 0.0}, kC = {0.5, 0.8660254037844386};
 double edge_distance(const Vec& p) {
     // Distances to the three edges of the unit equilateral triangle.
     const double s = 0.8660254037844386;
-    const double d0 = p.y;                                   // AB
-    const double d1 = (s * (1.0 - p.x) - 0.5 * p.y);         // BC: n = (s, 0.5), through B
-    const double d2 = (s * p.x - 0.5 * p.y);                 // CA: n = (s, -0.5), through A
+    const double d0 = p.y;                            // AB
+    const double d1 = (s * (1.0 - p.x) - 0.5 * p.y);  // BC: n = (s, 0.5), through B
+    const double d2 = (s * p.x - 0.5 * p.y);          // CA: n = (s, -0.5), through A
     return std::min({d0, d1, d2});
 }
 
@@ -92,7 +92,8 @@ int main(int argc, char** argv) {
     std::fprintf(f, "constexpr uint32_t kPatterns = %d, kPatternPoints = %d;\n", patterns, points);
     std::fprintf(f, "constexpr uint16_t kPattern[%d][%d][2] = {\n", patterns, points);
     for (int pattern = 0; pattern < patterns; ++pattern) {
-        const std::vector<Vec> chosen = farthest_points(points, per_point, seed + uint64_t(pattern) * 7919u);
+        const std::vector<Vec> chosen =
+            farthest_points(points, per_point, seed + uint64_t(pattern) * 7919u);
         std::fprintf(f, "  {");
         for (size_t i = 0; i < chosen.size(); ++i) {
             // Barycentric of A (corner 0) and B (corner 1): p = a A + b B + c C.
@@ -119,13 +120,15 @@ std::vector<Vec> farthest_points(int points, int per_point, uint64_t seed) {
     for (Vec& c : cand) {
         double a = rng.next(), b = rng.next();
         if (a + b > 1.0) a = 1.0 - a, b = 1.0 - b;
-        c = {kA.x + a * (kB.x - kA.x) + b * (kC.x - kA.x), kA.y + a * (kB.y - kA.y) + b * (kC.y - kA.y)};
+        c = {kA.x + a * (kB.x - kA.x) + b * (kC.x - kA.x),
+             kA.y + a * (kB.y - kA.y) + b * (kC.y - kA.y)};
     }
     // Grid over the bounding box for distance updates.
     const int g = std::max(1, int(std::sqrt(double(n) / 8.0)));
     std::vector<std::vector<uint32_t>> grid(size_t(g) * g);
     auto cell_of = [&](double v) { return std::min(g - 1, std::max(0, int(v * g))); };
-    for (uint32_t i = 0; i < n; ++i) grid[size_t(cell_of(cand[i].y / kC.y)) * g + cell_of(cand[i].x)].push_back(i);
+    for (uint32_t i = 0; i < n; ++i)
+        grid[size_t(cell_of(cand[i].y / kC.y)) * g + cell_of(cand[i].x)].push_back(i);
     std::vector<double> dist(n);
     std::priority_queue<std::pair<double, uint32_t>> heap;
     for (uint32_t i = 0; i < n; ++i) {

@@ -75,13 +75,17 @@ using stipple::cli::Json;
 
 // Measured values keep the 6 significant digits the tool always printed; NaN and infinity
 // become null.
-double number(double v) { return stipple::cli::significant(v, 6); }
+double number(double v) {
+    return stipple::cli::significant(v, 6);
+}
 
 // ---- helpers ----------------------------------------------------------------------------
 
 stipple::cli::Parser g_tool("stipple-measure", kUsage);
 
-[[noreturn]] void die(const std::string& message) { g_tool.fail(message); }
+[[noreturn]] void die(const std::string& message) {
+    g_tool.fail(message);
+}
 
 m::Mask load_mask(const std::string& path) {
     m::Mask mask;
@@ -216,9 +220,8 @@ int tone(int argc, char** argv) {
     require_same_size(mask, image.width, image.height, "frame '" + frame + "'");
     if (!rows) row_end = image.height;
     size_t pixels = 0;
-    const double t =
-        m::mean_tone_rows(image.rgba.data(), image.width, image.height, mask, row_begin, row_end,
-                          &pixels);
+    const double t = m::mean_tone_rows(image.rgba.data(), image.width, image.height, mask,
+                                       row_begin, row_end, &pixels);
     const m::MaskExtent e = m::mask_extent(mask);
     Json o;
     o["frame"] = frame;
@@ -336,7 +339,8 @@ int coherence(int argc, char** argv) {
         }
         frames.push_back(f);
     }
-    if (frames.size() < 2) die("coherence needs at least two consecutive dots files in '" + dir + "'");
+    if (frames.size() < 2)
+        die("coherence needs at least two consecutive dots files in '" + dir + "'");
     if (!contours.empty()) check_dir(contours);
     const CoherenceJson c = coherence_json(dir, frames, contours);
     Json o;

@@ -58,33 +58,46 @@ const std::string kUsage =
     "  --frames N              frames to render (default 30, in [1, 100000])\n"
     "  --fps F                 frames per second of animation time (default 30, in [0.001, 1000])\n"
     "  --time T0               start time in seconds (default 0, |T0| <= 1e6); clips loop\n"
-    "  --size WxH              image size (default " + std::to_string(kDefaults.width) + "x" +
-    std::to_string(kDefaults.height) + ", " + std::to_string(kLimits.width.min) +
-    " <= W, H <= " + std::to_string(kLimits.width.max) + ")\n"
+    "  --size WxH              image size (default " +
+    std::to_string(kDefaults.width) + "x" + std::to_string(kDefaults.height) + ", " +
+    std::to_string(kLimits.width.min) + " <= W, H <= " + std::to_string(kLimits.width.max) +
+    ")\n"
     "  --zoom Z                1 = every pose of the played clip(s) fits the view (no clip:\n"
-    "                          the rest pose), 2 = twice as large (default " + g(kDefaults.zoom) +
-    ", " + range(kLimits.zoom) + ")\n"
+    "                          the rest pose), 2 = twice as large (default " +
+    g(kDefaults.zoom) + ", " + range(kLimits.zoom) +
+    ")\n"
     "  --zoom-to Z2            zoom from Z to Z2 (geometrically) over the frames (default: no\n"
-    "                          zoom change; " + range(kLimits.zoom) + ")\n"
-    "  --yaw DEG, --pitch DEG  camera orbit (default " + g(kDefaults.yaw_degrees) + ", " +
-    g(kDefaults.pitch_degrees) + ": looking down -Z);\n                          yaw " +
-    range(kLimits.yaw_degrees) + ", pitch " + range(kLimits.pitch_degrees) + "\n"
-    "  --tone T                constant target tone " + range(kLimits.constant_tone) +
+    "                          zoom change; " +
+    range(kLimits.zoom) +
+    ")\n"
+    "  --yaw DEG, --pitch DEG  camera orbit (default " +
+    g(kDefaults.yaw_degrees) + ", " + g(kDefaults.pitch_degrees) +
+    ": looking down -Z);\n                          yaw " + range(kLimits.yaw_degrees) +
+    ", pitch " + range(kLimits.pitch_degrees) +
+    "\n"
+    "  --tone T                constant target tone " +
+    range(kLimits.constant_tone) +
     " instead of lighting (default:\n"
     "                          lighting)\n"
-    "  --point-size PX         maximum stipple diameter (default " + g(kDefaults.max_point_size) +
-    ", " + range(kLimits.max_point_size) + ")\n"
-    "  --background RRGGBB     background colour (default " + background_default() + ")\n"
+    "  --point-size PX         maximum stipple diameter (default " +
+    g(kDefaults.max_point_size) + ", " + range(kLimits.max_point_size) +
+    ")\n"
+    "  --background RRGGBB     background colour (default " +
+    background_default() +
+    ")\n"
     "  --no-relevance-update   keep rest-pose relevance radii (thesis Alg. 6.3 without 6.4)\n"
     "  --dark-tone T           darkest tone lighting asks for, thesis §8.4 (default " +
-    g(kDefaults.dark_tone) + ", " + range(kLimits.dark_tone) + ")\n"
+    g(kDefaults.dark_tone) + ", " + range(kLimits.dark_tone) +
+    ")\n"
     "  --refinement-budget N   extra points per frame where the baked hierarchy runs out\n"
     "                          (close-ups, stretch; default " +
     std::to_string(kDefaults.refinement_budget) + ", 0 = off, max " +
-    std::to_string(kLimits.refinement_budget.max) + ")\n"
+    std::to_string(kLimits.refinement_budget.max) +
+    ")\n"
     "  --no-silhouettes        do not draw silhouette lines\n"
-    "  --line-width PX         silhouette line width (default " + g(kDefaults.line_width) + ", " +
-    range(kLimits.line_width) + ")\n"
+    "  --line-width PX         silhouette line width (default " +
+    g(kDefaults.line_width) + ", " + range(kLimits.line_width) +
+    ")\n"
     "  --dots-out              also write dots_NNNN.csv (id,x,y,size per drawn dot)\n"
     "  --mask-out              also write mask_NNNN.png: white where the mesh covers the\n"
     "                          pixel, black elsewhere (the object mask of stipple-measure)\n"
@@ -119,7 +132,9 @@ struct Options {
 
 stipple::cli::Parser g_parser("stipple-play", kUsage.c_str());
 
-[[noreturn]] void die(const std::string& message) { g_parser.fail(message); }
+[[noreturn]] void die(const std::string& message) {
+    g_parser.fail(message);
+}
 
 // --blend CLIP2:W and --crossfade CLIP2:S.
 void parse_mix(const std::string& option, const std::string& v, Options* o) {
@@ -129,15 +144,16 @@ void parse_mix(const std::string& option, const std::string& v, Options* o) {
         die(option + " takes CLIP:" + (blend ? "WEIGHT" : "SECONDS") + ", got '" + v + "'");
     o->second_clip = v.substr(0, colon);
     o->mix = blend ? Options::Mix::blend : Options::Mix::crossfade;
-    o->mix_amount = blend ? g_parser.number_value(option + " weight", v.substr(colon + 1), 0, 1)
-                          : g_parser.number_value(option + " seconds", v.substr(colon + 1),
-                                                  0.001, 1e4);
+    o->mix_amount =
+        blend ? g_parser.number_value(option + " weight", v.substr(colon + 1), 0, 1)
+              : g_parser.number_value(option + " seconds", v.substr(colon + 1), 0.001, 1e4);
 }
 
 // What is played and how the camera sees it.
 void add_view_options(stipple::cli::Parser& p, Options& o) {
     p.text("--clip", &o.clip)
-        .custom("--blend", [&o](const std::string& n, const std::string& v) { parse_mix(n, v, &o); })
+        .custom("--blend",
+                [&o](const std::string& n, const std::string& v) { parse_mix(n, v, &o); })
         .custom("--crossfade",
                 [&o](const std::string& n, const std::string& v) { parse_mix(n, v, &o); })
         .choice("--skinning", {std::pair<const char*, bool>{"lbs", false}, {"dqs", true}}, &o.dqs)
@@ -148,8 +164,10 @@ void add_view_options(stipple::cli::Parser& p, Options& o) {
                 [&o](const std::string& n, const std::string& v) {
                     const stipple::Setting<int>& w = kLimits.width;
                     if (!stipple::cli::parse_size(v, w.min, w.max, &o.width, &o.height))
-                        g_parser.bad_value(n, "WxH with " + std::to_string(w.min) +
-                                                  " <= W, H <= " + std::to_string(w.max), v);
+                        g_parser.bad_value(n,
+                                           "WxH with " + std::to_string(w.min) +
+                                               " <= W, H <= " + std::to_string(w.max),
+                                           v);
                 })
         .number("--zoom", kLimits.zoom.min, kLimits.zoom.max, &o.zoom)
         .number("--zoom-to", kLimits.zoom.min, kLimits.zoom.max, &o.zoom_to)
@@ -165,8 +183,8 @@ void add_render_options(stipple::cli::Parser& p, Options& o) {
         .custom("--background",
                 [&o](const std::string& n, const std::string& v) {
                     long long rgb = 0;
-                    if (v.size() != 6 || v.find_first_not_of("0123456789abcdefABCDEF") !=
-                                             std::string::npos)
+                    if (v.size() != 6 ||
+                        v.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos)
                         g_parser.bad_value(n, "RRGGBB hex", v);
                     rgb = std::stoll(v, nullptr, 16);
                     for (int k = 0; k < 3; ++k)
@@ -341,8 +359,7 @@ void render_frame(const Options& o, const Clips& clips, long f, stipple::Pipelin
     state.time = float(o.time0 + elapsed);
     state.blend_clip = clips.second;
     state.blend_time = float(crossfade ? elapsed : o.time0 + elapsed);
-    state.blend_weight =
-        float(crossfade ? std::min(elapsed / o.mix_amount, 1.0) : o.mix_amount);
+    state.blend_weight = float(crossfade ? std::min(elapsed / o.mix_amount, 1.0) : o.mix_amount);
     auto start = std::chrono::steady_clock::now();
     if (o.zoom_to > 0 && o.frames > 1) {
         stipple::FrameConfig view = pipeline->config;
@@ -382,10 +399,11 @@ void print_stats(const Options& o, const stipple::Asset& asset, const Clips& cli
     j["refinement_budget_scale"] = fixed(t.budget_scale, 3);
     j["ms_per_frame"] = fixed(t.frame_ms / n, 3);
     const std::pair<const char*, double> stages[] = {
-        {"sample", t.times.sample},         {"skin", t.times.skin}, {"place", t.times.place},
-        {"relevance", t.times.relevance},   {"refine", t.times.refine},
-        {"size", t.times.size},             {"silhouette", t.times.silhouette},
-        {"draw", t.times.draw},             {"readback", t.times.readback}};
+        {"sample", t.times.sample},         {"skin", t.times.skin},
+        {"place", t.times.place},           {"relevance", t.times.relevance},
+        {"refine", t.times.refine},         {"size", t.times.size},
+        {"silhouette", t.times.silhouette}, {"draw", t.times.draw},
+        {"readback", t.times.readback}};
     stipple::cli::Json per_stage;
     for (const auto& stage : stages) per_stage[stage.first] = fixed(stage.second / n, 3);
     j["ms_per_stage"] = per_stage;
@@ -413,7 +431,8 @@ int main(int argc, char** argv) {
         stipple::platform::create_headless_context(hc, &context);
     if (!created.ok()) die(created.message);
     stipple::GlApi gl;
-    const stipple::Status loaded = stipple::load_gl_api(stipple::platform::proc_loader(context), &gl);
+    const stipple::Status loaded =
+        stipple::load_gl_api(stipple::platform::proc_loader(context), &gl);
     if (!loaded.ok()) die(loaded.message);
 
     const stipple::FrameConfig pc = pipeline_config(o, clips);

@@ -317,7 +317,7 @@ TEST(AssetFormat, BoundsAndSidesRoundTrip) {
     ASSERT_NE(a.edges.double_sided_boundary, nullptr);
     uint32_t rims = 0;
     for (uint32_t e = 0; e < a.edges.edge_count; ++e) rims += a.edges.double_sided_boundary[e];
-    EXPECT_EQ(rims, 2u);  // triangle 1's two boundary edges
+    EXPECT_EQ(rims, 2u);                            // triangle 1's two boundary edges
     EXPECT_EQ(a.section_size[kSectionSides], 12u);  // one run: count + (first, count)
     // No double-sided triangle: no SIDE section.
     s.double_sided = {0, 0};

@@ -17,8 +17,8 @@
 #include "bake/point_grid.h"
 #include "bake/point_hierarchy.h"
 #include "bake/scene_import.h"
-#include "tests/common/fixtures.h"
 #include "tests/common/bake_result.h"
+#include "tests/common/fixtures.h"
 
 namespace {
 
@@ -28,7 +28,9 @@ using stipple::test::source;
 RawScene tube() {
     RawScene s;
     std::string error;
-    EXPECT_TRUE(stipple::test::bake_ok(import_scene(source("assets/stretch_tube/stretch_tube.gltf"), &s), &error)) << error;
+    EXPECT_TRUE(stipple::test::bake_ok(
+        import_scene(source("assets/stretch_tube/stretch_tube.gltf"), &s), &error))
+        << error;
     return s;
 }
 
@@ -55,10 +57,14 @@ double distance_to_triangle(const RawScene& s, uint32_t t, const glm::dvec3& p) 
 
 const char* method_name(HierarchyMethod m) {
     switch (m) {
-        case HierarchyMethod::simplify: return "simplify";
-        case HierarchyMethod::relax: return "relax";
-        case HierarchyMethod::random: return "random";
-        case HierarchyMethod::eliminate: return "eliminate";
+        case HierarchyMethod::simplify:
+            return "simplify";
+        case HierarchyMethod::relax:
+            return "relax";
+        case HierarchyMethod::random:
+            return "random";
+        case HierarchyMethod::eliminate:
+            return "eliminate";
     }
     return "?";
 }
@@ -108,7 +114,8 @@ TEST_P(PointHierarchyMethods, PointsLieOnTheInputSurfaceWithValidData) {
     config.point_count = 3000;
     PointHierarchy p;
     std::string error;
-    ASSERT_TRUE(stipple::test::bake_ok(build_point_hierarchy(s, config, &p, nullptr), &error)) << error;
+    ASSERT_TRUE(stipple::test::bake_ok(build_point_hierarchy(s, config, &p, nullptr), &error))
+        << error;
     ASSERT_EQ(p.size(), 3000u);
     expect_valid_hierarchy(s, p);
 }
@@ -132,12 +139,14 @@ TEST(PointHierarchy, RandomizeAndProjectStaysOnTheSurfaceWithoutSlivers) {
     PointHierarchy p;
     HierarchyStats stats;
     std::string error;
-    ASSERT_TRUE(stipple::test::bake_ok(build_point_hierarchy(s, config, &p, &stats), &error)) << error;
+    ASSERT_TRUE(stipple::test::bake_ok(build_point_hierarchy(s, config, &p, &stats), &error))
+        << error;
     expect_valid_hierarchy(s, p);
     EXPECT_EQ(stats.slivers_after_subdivision, stats.slivers_before_subdivision);
     config.jitter = 0;
     PointHierarchy plain;
-    ASSERT_TRUE(stipple::test::bake_ok(build_point_hierarchy(s, config, &plain, nullptr), &error)) << error;
+    ASSERT_TRUE(stipple::test::bake_ok(build_point_hierarchy(s, config, &plain, nullptr), &error))
+        << error;
     EXPECT_NE(p.bary_u, plain.bary_u);  // the jitter moved the points
 }
 
@@ -284,7 +293,9 @@ TEST(PointHierarchy, DefaultPrefixesAreEvenOnSliverMeshes) {
         config.point_count = 4000;
         PointHierarchy p;
         std::string error;
-        ASSERT_TRUE(stipple::test::bake_ok(build_point_hierarchy(c.scene, config, &p, nullptr), &error)) << error;
+        ASSERT_TRUE(
+            stipple::test::bake_ok(build_point_hierarchy(c.scene, config, &p, nullptr), &error))
+            << error;
         expect_valid_hierarchy(c.scene, p);
         const std::vector<double> xyz = point_positions(c.scene, p);
         const double area = area_of(c.scene);
@@ -304,7 +315,8 @@ TEST(PointHierarchy, DefaultPrefixesCoverATwoTrianglePlane) {
     config.point_count = 4000;
     PointHierarchy p;
     std::string error;
-    ASSERT_TRUE(stipple::test::bake_ok(build_point_hierarchy(s, config, &p, nullptr), &error)) << error;
+    ASSERT_TRUE(stipple::test::bake_ok(build_point_hierarchy(s, config, &p, nullptr), &error))
+        << error;
     const std::vector<double> xyz = point_positions(s, p);
     for (uint32_t n : {64u, 256u, 1000u, 4000u}) {
         const double cell = 2 * std::sqrt(4.0 / n);
@@ -364,7 +376,8 @@ double band_density_ratio(const RawScene& s, uint32_t points, uint32_t n, bool m
         config.seed = seed;
         PointHierarchy p;
         std::string error;
-        EXPECT_TRUE(stipple::test::bake_ok(build_point_hierarchy(s, config, &p, nullptr), &error)) << error;
+        EXPECT_TRUE(stipple::test::bake_ok(build_point_hierarchy(s, config, &p, nullptr), &error))
+            << error;
         const std::vector<double> xyz = point_positions(s, p);
         for (uint32_t i = 0; i < n && i < p.size(); ++i)
             count[classify(std::min(xyz[size_t(i) * 3], 1.0), xyz[size_t(i) * 3 + 1])] += 1;
@@ -389,8 +402,10 @@ TEST(PointHierarchy, DefaultPrefixesAreNotDenserAlongABoundary) {
     config.point_count = 2000;
     PointHierarchy a, b;
     std::string error;
-    ASSERT_TRUE(stipple::test::bake_ok(build_point_hierarchy(s, config, &a, nullptr), &error)) << error;
-    ASSERT_TRUE(stipple::test::bake_ok(build_point_hierarchy(s, config, &b, nullptr), &error)) << error;
+    ASSERT_TRUE(stipple::test::bake_ok(build_point_hierarchy(s, config, &a, nullptr), &error))
+        << error;
+    ASSERT_TRUE(stipple::test::bake_ok(build_point_hierarchy(s, config, &b, nullptr), &error))
+        << error;
     EXPECT_EQ(encode_asset(s, a), encode_asset(s, b));
     expect_valid_hierarchy(s, a);
 }
@@ -402,8 +417,7 @@ TEST(PointHierarchy, DefaultPrefixesAreEvenAcrossACrack) {
     const RawScene s = open_square(8, 1e-5f);
     for (uint32_t n : {250u, 1000u, 4000u}) {
         const double ratio = band_density_ratio(s, 4000, n, true);
-        std::printf("prefix %u: density near the border or the crack / interior %.3f\n", n,
-                    ratio);
+        std::printf("prefix %u: density near the border or the crack / interior %.3f\n", n, ratio);
         EXPECT_NEAR(ratio, 1.0, 0.15) << "prefix " << n;
     }
 }
@@ -423,7 +437,8 @@ TEST_P(PointHierarchyMethods, MalformedMeshesBakeOrFailWithANamedError) {
     PointHierarchy p;
     HierarchyStats stats;
     std::string error;
-    ASSERT_TRUE(stipple::test::bake_ok(build_point_hierarchy(s, config, &p, &stats), &error)) << error;
+    ASSERT_TRUE(stipple::test::bake_ok(build_point_hierarchy(s, config, &p, &stats), &error))
+        << error;
     EXPECT_EQ(p.size(), 500u);
     EXPECT_GE(stats.skipped_faces, 1u);
     expect_valid_hierarchy(s, p);
@@ -433,13 +448,15 @@ TEST_P(PointHierarchyMethods, MalformedMeshesBakeOrFailWithANamedError) {
     one.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     one.normals.assign(9, 0.0f);
     one.indices = {0, 1, 2};
-    ASSERT_TRUE(stipple::test::bake_ok(build_point_hierarchy(one, config, &p, nullptr), &error)) << error;
+    ASSERT_TRUE(stipple::test::bake_ok(build_point_hierarchy(one, config, &p, nullptr), &error))
+        << error;
     expect_valid_hierarchy(one, p);
 
     auto fails_with = [&](RawScene bad, const char* words) {
         PointHierarchy q;
         std::string e;
-        EXPECT_FALSE(stipple::test::bake_ok(build_point_hierarchy(bad, config, &q, nullptr), &e)) << words;
+        EXPECT_FALSE(stipple::test::bake_ok(build_point_hierarchy(bad, config, &q, nullptr), &e))
+            << words;
         EXPECT_NE(e.find(words), std::string::npos) << e;
     };
     RawScene flat = one;

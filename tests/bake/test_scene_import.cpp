@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "tests/common/gltf_writer.h"
 #include "bake/scene_import.h"
 #include "tests/common/bake_result.h"
+#include "tests/common/gltf_writer.h"
 
 namespace stipple::bake {
 namespace {
@@ -43,8 +43,9 @@ void replace_all(std::string* s, const std::string& from, const std::string& to)
 // Writes a .gltf whose "@BUFFER@" placeholder becomes buffer 0 holding `bin` as a data URI.
 std::string write_named_gltf(const std::string& name, std::string json, const Bin& bin) {
     replace_all(&json, "@BUFFER@",
-                R"({"uri": "data:application/octet-stream;base64,)" + stipple::test::gltf_base64(bin.bytes) +
-                    R"(", "byteLength": )" + std::to_string(bin.bytes.size()) + "}");
+                R"({"uri": "data:application/octet-stream;base64,)" +
+                    stipple::test::gltf_base64(bin.bytes) + R"(", "byteLength": )" +
+                    std::to_string(bin.bytes.size()) + "}");
     return write_file(name, json);
 }
 
@@ -225,7 +226,8 @@ TEST(GltfImport, HierarchyAndMatrixNodesComposeInStaticScenes) {
 }
 
 TEST(GltfImport, OutOfRangeIndexFails) {
-    const std::string path = write_named_gltf("bad_index.gltf", kTriangleJson, triangle_bin({0, 1, 5}));
+    const std::string path =
+        write_named_gltf("bad_index.gltf", kTriangleJson, triangle_bin({0, 1, 5}));
     RawScene s;
     std::string error;
     EXPECT_FALSE(stipple::test::bake_ok(import_gltf(path, &s), &error));
@@ -338,7 +340,9 @@ std::string write_skinned_gltf(const std::string& name, uint8_t w2) {
 TEST(GltfImport, SkinWeightsAreRenormalisedAndUnskinnedMeshesBecomeRigidJoints) {
     RawScene s;
     std::string error;
-    ASSERT_TRUE(stipple::test::bake_ok(import_gltf(write_skinned_gltf("skinned.gltf", 0), &s), &error)) << error;
+    ASSERT_TRUE(
+        stipple::test::bake_ok(import_gltf(write_skinned_gltf("skinned.gltf", 0), &s), &error))
+        << error;
     ASSERT_TRUE(s.animated());
     ASSERT_EQ(s.nodes.size(), 4u);
     EXPECT_EQ(s.nodes[3].name, "rigid");
@@ -366,7 +370,8 @@ TEST(GltfImport, SkinWeightsAreRenormalisedAndUnskinnedMeshesBecomeRigidJoints) 
 TEST(GltfImport, WeightedJointOutsideTheSkinFails) {
     RawScene s;
     std::string error;
-    EXPECT_FALSE(stipple::test::bake_ok(import_gltf(write_skinned_gltf("bad_joint.gltf", 10), &s), &error));
+    EXPECT_FALSE(
+        stipple::test::bake_ok(import_gltf(write_skinned_gltf("bad_joint.gltf", 10), &s), &error));
     expect_one_line_error(error);
     EXPECT_NE(error.find("joint index 9 out of range (skin 0 has 2 joints)"), std::string::npos)
         << error;
@@ -391,7 +396,9 @@ TEST(GltfImport, SparseAccessorWithoutBufferViewIsZerosWithSubstitutions) {
     })";
     RawScene s;
     std::string error;
-    ASSERT_TRUE(stipple::test::bake_ok(import_gltf(write_named_gltf("sparse.gltf", json, bin), &s), &error)) << error;
+    ASSERT_TRUE(
+        stipple::test::bake_ok(import_gltf(write_named_gltf("sparse.gltf", json, bin), &s), &error))
+        << error;
     EXPECT_EQ(s.positions, (std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0}));
     EXPECT_EQ(s.triangle_count(), 1u);
 }
@@ -524,7 +531,8 @@ TEST(StaticMeshImport, ObjCubeOfQuadsIsTriangulatedWithOutwardNormals) {
 TEST(StaticMeshImport, FilesWithoutTrianglesFail) {
     RawScene s;
     std::string error;
-    EXPECT_FALSE(stipple::test::bake_ok(import_static_mesh(write_file("points.obj", "v 0 0 0\nv 1 0 0\n"), &s), &error));
+    EXPECT_FALSE(stipple::test::bake_ok(
+        import_static_mesh(write_file("points.obj", "v 0 0 0\nv 1 0 0\n"), &s), &error));
     expect_one_line_error(error);
     EXPECT_NE(error.find("no triangles"), std::string::npos) << error;
     EXPECT_FALSE(stipple::test::bake_ok(import_static_mesh(temp_path("missing.stl"), &s), &error));
@@ -535,7 +543,8 @@ TEST(StaticMeshImport, FilesWithoutTrianglesFail) {
 TEST(SceneImport, DispatchesOnExtensionAndRejectsUnknownOnes) {
     RawScene s;
     std::string error;
-    EXPECT_FALSE(stipple::test::bake_ok(import_scene(write_file("mesh.fbx", "whatever"), &s), &error));
+    EXPECT_FALSE(
+        stipple::test::bake_ok(import_scene(write_file("mesh.fbx", "whatever"), &s), &error));
     expect_one_line_error(error);
     EXPECT_NE(error.find("unsupported file extension"), std::string::npos) << error;
     EXPECT_FALSE(stipple::test::bake_ok(import_scene(temp_path("no_extension"), &s), &error));

@@ -1,8 +1,9 @@
 // Frame checks of tone, evenness, stretch and coherence over the issue-7 corpus: every asset
-// baked with stipple-bake's defaults (once per ctest run: tests/test_assets.txt), drawn headless in-process (one EGL context per test
-// process) and measured with tools/frame_measure.h, the library behind stipple-measure.
-// Silhouette lines are off: they add ink along the outline, not over the area, so tone is
-// the mean darkness of the stipples inside the object's mask (the mesh pass's coverage).
+// baked with stipple-bake's defaults (once per ctest run: tests/test_assets.txt), drawn headless
+// in-process (one EGL context per test process) and measured with tools/frame_measure.h, the
+// library behind stipple-measure. Silhouette lines are off: they add ink along the outline, not
+// over the area, so tone is the mean darkness of the stipples inside the object's mask (the mesh
+// pass's coverage).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -110,12 +111,15 @@ class Stage {
         s.mask.inside.resize(depth_.size());
         for (int y = 0; y < kHeight; ++y) {  // GL rows are bottom first
             const size_t from = size_t(kHeight - 1 - y) * kWidth, to = size_t(y) * kWidth;
-            std::copy(rgba_.begin() + from * 4, rgba_.begin() + (from + kWidth) * 4, s.image.rgba.begin() + to * 4);
+            std::copy(rgba_.begin() + from * 4, rgba_.begin() + (from + kWidth) * 4,
+                      s.image.rgba.begin() + to * 4);
             for (int x = 0; x < kWidth; ++x) s.mask.inside[to + x] = depth_[from + x] < 1.0f;
         }
-        const uint32_t n = pipeline_visible_dots(*pipeline_, depth_.data(), dots_.data(), uint32_t(dots_.size()));
+        const uint32_t n =
+            pipeline_visible_dots(*pipeline_, depth_.data(), dots_.data(), uint32_t(dots_.size()));
         s.dots.resize(n);
-        for (uint32_t i = 0; i < n; ++i) s.dots[i] = {dots_[i].id, dots_[i].x, dots_[i].y, dots_[i].size};
+        for (uint32_t i = 0; i < n; ++i)
+            s.dots[i] = {dots_[i].id, dots_[i].x, dots_[i].y, dots_[i].size};
         return s;
     }
 
@@ -145,7 +149,8 @@ double tone_of(const Shot& s, size_t* pixels = nullptr) {
     const std::vector<float> distance = measure::distance_to_outside(s.mask);
     for (size_t i = 0; i < distance.size(); ++i) inner.inside[i] = distance[i] > kOutline;
     size_t n = 0;
-    const double t = measure::mean_tone(s.image.rgba.data(), s.image.width, s.image.height, inner, &n);
+    const double t =
+        measure::mean_tone(s.image.rgba.data(), s.image.width, s.image.height, inner, &n);
     if (pixels) *pixels = n;
     return t;
 }
@@ -168,7 +173,9 @@ TEST_P(Corpus, ToneHoldsAtEveryZoom) {
     const CorpusAsset& a = GetParam();
     Stage stage;
     std::string error;
-    ASSERT_TRUE(stage.open(a.path, "", std::string(a.name) == "StretchTube" ? "rest" : nullptr, &error)) << error;
+    ASSERT_TRUE(
+        stage.open(a.path, "", std::string(a.name) == "StretchTube" ? "rest" : nullptr, &error))
+        << error;
     const float zooms[] = {0.25f, 0.5f, 1, 2, 4, 8, 16};
     for (float target : {0.1f, 0.3f, 0.6f, 0.9f}) {
         double tone[7], tol[7];
@@ -199,12 +206,15 @@ TEST_P(Corpus, DotsAreEvenAtZoomOneAndFour) {
     const CorpusAsset& a = GetParam();
     Stage stage;
     std::string error;
-    ASSERT_TRUE(stage.open(a.path, "", std::string(a.name) == "StretchTube" ? "rest" : nullptr, &error)) << error;
+    ASSERT_TRUE(
+        stage.open(a.path, "", std::string(a.name) == "StretchTube" ? "rest" : nullptr, &error))
+        << error;
     for (float zoom : {1.0f, 4.0f}) {
         const Shot s = stage.shoot(zoom, 0.3f);
         const measure::Evenness e = measure::evenness(s.dots, s.mask);
         std::printf("%-12s zoom %.0f: %zu dots, clump share %.4f, NN cv %.3f, empty blocks %d/%d\n",
-                    a.name, double(zoom), e.dots, e.clump_share, e.nn_cv, e.empty_blocks, e.blocks_inside);
+                    a.name, double(zoom), e.dots, e.clump_share, e.nn_cv, e.empty_blocks,
+                    e.blocks_inside);
         ASSERT_GT(e.dots, 50u) << a.name;
         EXPECT_LE(e.clump_share, 0.03) << a.name << " zoom " << zoom;
         EXPECT_LE(e.nn_cv, 0.3) << a.name << " zoom " << zoom;
@@ -212,7 +222,9 @@ TEST_P(Corpus, DotsAreEvenAtZoomOneAndFour) {
     }
 }
 
-std::string asset_name(const ::testing::TestParamInfo<CorpusAsset>& info) { return info.param.name; }
+std::string asset_name(const ::testing::TestParamInfo<CorpusAsset>& info) {
+    return info.param.name;
+}
 
 INSTANTIATE_TEST_SUITE_P(Issue7, Corpus, ::testing::ValuesIn(kCorpus), asset_name);
 
@@ -225,7 +237,8 @@ TEST_P(Stretch, ToneOfTheStretchedBandFollowsTheRestBand) {
     const int points = GetParam();
     Stage stage;
     std::string error;
-    ASSERT_TRUE(stage.open("stretch_tube/stretch_tube.gltf", "--points " + std::to_string(points), "sweep", &error))
+    ASSERT_TRUE(stage.open("stretch_tube/stretch_tube.gltf", "--points " + std::to_string(points),
+                           "sweep", &error))
         << error;
     std::printf("tube %6d points, stretched/rest band tone at scale", points);
     for (float scale : {0.5f, 1.0f, 1.5f, 2.0f, 2.5f}) {
@@ -239,10 +252,12 @@ TEST_P(Stretch, ToneOfTheStretchedBandFollowsTheRestBand) {
             return int((0.5f - 0.5f * c.y / c.w) * float(Stage::kHeight));
         };
         size_t rest_px = 0, band_px = 0;
-        const double rest = measure::mean_tone_rows(s.image.rgba.data(), s.image.width, s.image.height, s.mask,
-                                                    row(0.9f), row(0.1f), &rest_px);
-        const double band = measure::mean_tone_rows(s.image.rgba.data(), s.image.width, s.image.height, s.mask,
-                                                    row(1.0f + 0.9f * scale), row(1.0f + 0.1f * scale), &band_px);
+        const double rest =
+            measure::mean_tone_rows(s.image.rgba.data(), s.image.width, s.image.height, s.mask,
+                                    row(0.9f), row(0.1f), &rest_px);
+        const double band =
+            measure::mean_tone_rows(s.image.rgba.data(), s.image.width, s.image.height, s.mask,
+                                    row(1.0f + 0.9f * scale), row(1.0f + 0.1f * scale), &band_px);
         std::printf(" %.1f: %.3f/%.3f", double(scale), band, rest);
         ASSERT_GT(rest_px, 500u);
         ASSERT_GT(band_px, 200u);
@@ -290,8 +305,8 @@ TEST(Coherence, ZoomFromOneToSixteenDoesNotPop) {
         before = std::move(after);
     }
     const measure::Coherence c = measure::summarize(pairs);
-    std::printf("zoom 1 -> 16: max pop share %.4f (pair %d), mean %.5f, pops %zu\n", c.max_pop_share,
-                c.max_pop_share_pair, c.mean_pop_share, c.pops);
+    std::printf("zoom 1 -> 16: max pop share %.4f (pair %d), mean %.5f, pops %zu\n",
+                c.max_pop_share, c.max_pop_share_pair, c.mean_pop_share, c.pops);
     EXPECT_LE(c.max_pop_share, 0.01);
 }
 

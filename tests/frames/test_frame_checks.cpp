@@ -24,7 +24,8 @@ class FrameChecks : public ::testing::Test {
         run("rm -rf " + dir + " && mkdir -p " + dir);
         // The assets are baked once per ctest run (tests/test_assets.txt).
         const std::string cesium = baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 60000");
-        const std::string tube = baked_asset("assets/stretch_tube/stretch_tube.gltf", "--points 40000");
+        const std::string tube =
+            baked_asset("assets/stretch_tube/stretch_tube.gltf", "--points 40000");
         ASSERT_FALSE(cesium.empty() || tube.empty());
         ASSERT_EQ(run("ln -s " + cesium + " " + dir + "/cesium.stip"), 0);
         ASSERT_EQ(run("ln -s " + tube + " " + dir + "/tube.stip"), 0);
@@ -80,8 +81,9 @@ TEST_F(FrameChecks, ToneIsKeptUnderDeformationWithRelevanceUpdates) {
     double rest = tone("tube.stip", "tube_rest", view + " --time 0");
     double stretched = tone("tube.stip", "tube_stretched", view + " --time 1");
     double frozen = tone("tube.stip", "tube_frozen", view + " --time 1 --no-relevance-update");
-    std::printf("tube darkness: rest %.4f, stretched %.4f (%.1f%%), without updates %.4f (%.1f%%)\n",
-                rest, stretched, 100 * (stretched / rest - 1), frozen, 100 * (frozen / rest - 1));
+    std::printf(
+        "tube darkness: rest %.4f, stretched %.4f (%.1f%%), without updates %.4f (%.1f%%)\n", rest,
+        stretched, 100 * (stretched / rest - 1), frozen, 100 * (frozen / rest - 1));
     EXPECT_GT(rest, 0.1);
     EXPECT_LE(std::fabs(stretched - rest), 0.2 * rest);
     EXPECT_GT(std::fabs(frozen - rest), std::fabs(stretched - rest) + 0.05 * rest);
@@ -114,7 +116,8 @@ TEST_F(FrameChecks, DotsPersistAcrossConsecutiveFrames) {
 
 // Dots land only on the object, and a 640x480 frame holds a sensible number of them.
 TEST_F(FrameChecks, DotsStayInsideTheSilhouette) {
-    Image paper = frame("cesium.stip", "inside_mask", "--tone 0 --no-silhouettes --background 808080");
+    Image paper =
+        frame("cesium.stip", "inside_mask", "--tone 0 --no-silhouettes --background 808080");
     Image dots = frame("cesium.stip", "inside", "--background 808080 --dots-out");
     std::vector<uint8_t> mask = silhouette(paper);
     // A dot may spill up to its radius (1.5 px) past the edge: allow a 2-pixel border.

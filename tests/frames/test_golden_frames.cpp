@@ -24,7 +24,8 @@ TEST(GoldenFrames, MatchBlessedImages) {
     std::ifstream cases(source("tests/golden/cases.txt"));
     ASSERT_TRUE(cases.good());
     std::string line, work = ::testing::TempDir() + "golden_" + std::to_string(getpid());
-    run("rm -rf " + work + " && mkdir -p " + work);  // kept after a failure: actual frames and diffs
+    run("rm -rf " + work + " && mkdir -p " +
+        work);  // kept after a failure: actual frames and diffs
     int checked = 0;
     while (std::getline(cases, line)) {
         if (line.empty() || line[0] == '#') continue;
@@ -41,11 +42,11 @@ TEST(GoldenFrames, MatchBlessedImages) {
                       " --frames 1 --no-apng " + play),
                   0);
         std::string log;
-        int rc = run(bin("stipple-compare") + " " + out + "/frame_0000.png " +
-                         source(("tests/golden/" + name + ".png").c_str()) +
-                         " --tolerance 8 --shift 1 --max-fraction 0.005 --diff " + out +
-                         "/diff.png",
-                     &log);
+        int rc =
+            run(bin("stipple-compare") + " " + out + "/frame_0000.png " +
+                    source(("tests/golden/" + name + ".png").c_str()) +
+                    " --tolerance 8 --shift 1 --max-fraction 0.005 --diff " + out + "/diff.png",
+                &log);
         EXPECT_EQ(rc, 0) << name << ": " << log << " (actual and diff in " << out << ")";
         ++checked;
     }

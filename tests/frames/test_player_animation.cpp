@@ -27,7 +27,8 @@ class PlayerAnimation : public ::testing::Test {
     static void SetUpTestSuite() {
         dir = ::testing::TempDir() + "player_anim_" + std::to_string(getpid());
         run("rm -rf " + dir + " && mkdir -p " + dir);
-        const std::string tube = baked_asset("assets/stretch_tube/stretch_tube.gltf", "--points 5000");
+        const std::string tube =
+            baked_asset("assets/stretch_tube/stretch_tube.gltf", "--points 5000");
         ASSERT_FALSE(tube.empty());
         ASSERT_EQ(run("ln -s " + tube + " " + dir + "/tube.stip"), 0);
     }

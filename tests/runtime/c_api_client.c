@@ -6,8 +6,8 @@
 #include "runtime/stipple.h"
 
 /* Loads `asset_path` and creates a player for it; 0 on success, -1 (nothing to free) if not. */
-static int open_player(const char* asset_path, const stipple_player_desc* desc, stipple_asset** asset,
-                       stipple_player** player) {
+static int open_player(const char* asset_path, const stipple_player_desc* desc,
+                       stipple_asset** asset, stipple_player** player) {
     *asset = NULL;
     *player = NULL;
     if (stipple_asset_load_file(asset_path, asset) != STIPPLE_OK) return -1;

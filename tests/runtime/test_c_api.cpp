@@ -26,8 +26,8 @@ TEST(CApi, RendersAStippledFrameFromC) {
     std::string error;
     ASSERT_TRUE(gl.open(&error)) << error;
     uint32_t drawn = 0;
-    long dark = c_api_render_dark_pixels(asset.c_str(), stipple::platform::proc_loader(gl.context()),
-                                         0.5f, &drawn);
+    long dark = c_api_render_dark_pixels(
+        asset.c_str(), stipple::platform::proc_loader(gl.context()), 0.5f, &drawn);
     EXPECT_GT(dark, 300) << stipple_last_error();
     EXPECT_GT(drawn, 200u);
 }
@@ -39,7 +39,8 @@ TEST(CApi, BlendsTwoClips) {
     HeadlessGl gl;
     std::string error;
     ASSERT_TRUE(gl.open(&error)) << error;
-    const long rest = c_api_blend_height(asset.c_str(), stipple::platform::proc_loader(gl.context()), 0);
+    const long rest =
+        c_api_blend_height(asset.c_str(), stipple::platform::proc_loader(gl.context()), 0);
     const long half =
         c_api_blend_height(asset.c_str(), stipple::platform::proc_loader(gl.context()), 0.5f);
     ASSERT_GT(rest, 50) << stipple_last_error();

@@ -117,7 +117,9 @@ TEST(FrameConfig, CDescriptionResolvesThroughTheSameTable) {
     EXPECT_NE(std::strstr(stipple_last_error(), "width"), nullptr) << stipple_last_error();
 }
 
-void* no_gl(const char*) { return nullptr; }
+void* no_gl(const char*) {
+    return nullptr;
+}
 
 TEST(FrameConfig, PlayerCreateRejectsOutOfRangeSettingsBeforeAnyGlCall) {
     const std::string path =
@@ -152,8 +154,9 @@ TEST(RuntimeStatus, LoadErrorsMapOntoStatusCodes) {
     EXPECT_EQ(status_code_of(LoadError::io_error), StatusCode::io_error);
     EXPECT_EQ(status_code_of(LoadError::unsupported_version), StatusCode::unsupported_version);
     EXPECT_EQ(status_code_of(LoadError::out_of_memory), StatusCode::out_of_memory);
-    for (LoadError e : {LoadError::bad_magic, LoadError::truncated, LoadError::checksum_mismatch,
-                        LoadError::malformed_section, LoadError::out_of_range, LoadError::bad_value})
+    for (LoadError e :
+         {LoadError::bad_magic, LoadError::truncated, LoadError::checksum_mismatch,
+          LoadError::malformed_section, LoadError::out_of_range, LoadError::bad_value})
         EXPECT_EQ(status_code_of(e), StatusCode::bad_asset) << load_error_name(e);
 }
 

@@ -62,7 +62,8 @@ SizeParams camera(float cx, float cy, float distance, float tone) {
     SizeParams s;
     s.eye = glm::vec3(cx, cy, distance);
     const glm::mat4 view = glm::lookAt(s.eye, glm::vec3(cx, cy, 0), glm::vec3(0, 1, 0));
-    s.view_projection = glm::perspective(glm::radians(90.0f), 1.0f, 0.01f * distance, 10.0f * distance) * view;
+    s.view_projection =
+        glm::perspective(glm::radians(90.0f), 1.0f, 0.01f * distance, 10.0f * distance) * view;
     s.viewport_height = 512.0f;
     s.constant_tone = tone;
     return s;
@@ -73,8 +74,11 @@ struct Extra {
     std::vector<uint32_t> triangle, index;
     RefinedPoints out;
     explicit Extra(uint32_t capacity)
-        : positions(size_t(capacity) * 3), normals(size_t(capacity) * 3), radius(capacity),
-          triangle(capacity), index(capacity) {
+        : positions(size_t(capacity) * 3),
+          normals(size_t(capacity) * 3),
+          radius(capacity),
+          triangle(capacity),
+          index(capacity) {
         out.capacity = capacity;
         out.positions = positions.data();
         out.normals = normals.data();
@@ -109,7 +113,8 @@ TEST(PointRefinement, SequenceStaysInsideItsTriangleAndIsEvenAtEveryPrefix) {
             const std::vector<float> d = nearest(points);
             const float spacing = std::sqrt(0.4330127f / float(n));  // sqrt(area / n)
             const float closest = *std::min_element(d.begin(), d.end());
-            std::printf("prefix %u: NN cv %.3f, min NN / spacing %.3f\n", n, cv(d), closest / spacing);
+            std::printf("prefix %u: NN cv %.3f, min NN / spacing %.3f\n", n, cv(d),
+                        closest / spacing);
             // Within the pattern every prefix is even; past it the four sub-cells continue the
             // pattern without knowing the parent's points exactly, which costs evenness (a
             // known limit, docs/tone.md) but never duplicates a point.
@@ -158,7 +163,8 @@ TEST(PointRefinement, CountFollowsTheDensityTheSizeRuleAsksFor) {
     SizeParams s = camera(0, 0, 1.0f, 0.3f);
     Extra e(1 << 20);
     RefinementStats stats;
-    refine_points(&r, sq.view(), sq.positions.data(), sq.normals.data(), nullptr, s, true, &e.out, &stats);
+    refine_points(&r, sq.view(), sq.positions.data(), sq.normals.data(), nullptr, s, true, &e.out,
+                  &stats);
     const float dot_area = 0.785398f * 9.0f;
     const float centre_density = ink_for_tone(s, 0.3f) * 256.0f * 256.0f / dot_area;
     std::printf("extra points %u, centre density %.0f\n", e.out.count, centre_density);
@@ -179,8 +185,8 @@ TEST(PointRefinement, CountFollowsTheDensityTheSizeRuleAsksFor) {
     }
     // Twice as far away: a quarter of the points.
     Extra far(1 << 20);
-    refine_points(&r, sq.view(), sq.positions.data(), sq.normals.data(), nullptr, camera(0, 0, 2.0f, 0.3f),
-                  true, &far.out, nullptr);
+    refine_points(&r, sq.view(), sq.positions.data(), sq.normals.data(), nullptr,
+                  camera(0, 0, 2.0f, 0.3f), true, &far.out, nullptr);
     EXPECT_NEAR(float(far.out.count) / float(e.out.count), 0.25f, 0.05f);
 }
 
@@ -192,14 +198,17 @@ TEST(PointRefinement, StretchingGrowsTheRegionsAndTheCount) {
     for (size_t i = 0; i < stretched.size(); i += 3) stretched[i] *= 2.0f;  // 2x along x
     const SizeParams s = camera(1.0f, 0.5f, 2.0f, 0.3f);
     Extra a(1 << 20), b(1 << 20);
-    refine_points(&r, sq.view(), stretched.data(), sq.normals.data(), nullptr, s, false, &a.out, nullptr);
-    refine_points(&r, sq.view(), stretched.data(), sq.normals.data(), nullptr, s, true, &b.out, nullptr);
+    refine_points(&r, sq.view(), stretched.data(), sq.normals.data(), nullptr, s, false, &a.out,
+                  nullptr);
+    refine_points(&r, sq.view(), stretched.data(), sq.normals.data(), nullptr, s, true, &b.out,
+                  nullptr);
     // Without stretch the bind-pose regions are kept; with it every region doubles, so the
     // size rule draws twice as many points of each triangle's sequence.
     EXPECT_NEAR(float(b.out.count) / float(a.out.count), 2.0f, 0.1f);
     for (uint32_t i = 0; i < std::min(a.out.count, b.out.count); ++i) {
         if (a.triangle[i] != b.triangle[i] || a.index[i] != b.index[i]) continue;
-        ASSERT_NEAR(b.radius[i] * b.radius[i], 2.0f * a.radius[i] * a.radius[i], 1e-4f * b.radius[i]);
+        ASSERT_NEAR(b.radius[i] * b.radius[i], 2.0f * a.radius[i] * a.radius[i],
+                    1e-4f * b.radius[i]);
     }
 }
 
@@ -217,7 +226,9 @@ TEST(PointRefinement, BakedPointsComeFirstThenHandOver) {
         u[i] = v[i] = 1.0f / 3.0f;
         const uint32_t* tri = sq.indices.data() + host[i] * 3;
         for (int d = 0; d < 3; ++d)
-            bind[i * 3 + d] = (sq.positions[tri[0] * 3 + d] + sq.positions[tri[1] * 3 + d] + sq.positions[tri[2] * 3 + d]) / 3.0f;
+            bind[i * 3 + d] = (sq.positions[tri[0] * 3 + d] + sq.positions[tri[1] * 3 + d] +
+                               sq.positions[tri[2] * 3 + d]) /
+                              3.0f;
     }
     PointsView pv;
     pv.point_count = n;
@@ -232,8 +243,8 @@ TEST(PointRefinement, BakedPointsComeFirstThenHandOver) {
     EXPECT_NEAR(baked.finest_density, 2000.0f, 1.0f);
     std::vector<float> size(n);
     Extra far(1 << 20);
-    refine_points(&baked, sq.view(), sq.positions.data(), sq.normals.data(), nullptr, camera(0, 0, 2.0f, 0.3f), true,
-                  &far.out, nullptr);
+    refine_points(&baked, sq.view(), sq.positions.data(), sq.normals.data(), nullptr,
+                  camera(0, 0, 2.0f, 0.3f), true, &far.out, nullptr);
     EXPECT_EQ(far.out.count, 0u);
     std::fill(size.begin(), size.end(), 2.0f);
     fade_baked_points(baked, pv, size.data());
@@ -241,9 +252,12 @@ TEST(PointRefinement, BakedPointsComeFirstThenHandOver) {
     EXPECT_EQ(size[1], 2.0f);
     Extra near(1 << 20), alone(1 << 20);
     const SizeParams s = camera(0, 0, 0.7f, 0.3f);
-    refine_points(&baked, sq.view(), sq.positions.data(), sq.normals.data(), nullptr, s, true, &near.out, nullptr);
-    refine_points(&none, sq.view(), sq.positions.data(), sq.normals.data(), nullptr, s, true, &alone.out, nullptr);
-    std::printf("extra points with 2000 baked / without: %u / %u\n", near.out.count, alone.out.count);
+    refine_points(&baked, sq.view(), sq.positions.data(), sq.normals.data(), nullptr, s, true,
+                  &near.out, nullptr);
+    refine_points(&none, sq.view(), sq.positions.data(), sq.normals.data(), nullptr, s, true,
+                  &alone.out, nullptr);
+    std::printf("extra points with 2000 baked / without: %u / %u\n", near.out.count,
+                alone.out.count);
     EXPECT_EQ(near.out.count, alone.out.count);
     fade_baked_points(baked, pv, size.data());
     EXPECT_EQ(size[0], 0.0f);
@@ -255,8 +269,8 @@ TEST(PointRefinement, OnlyWhatTheViewShowsAndTheBudgetHolds) {
     RefinementMesh r;
     ASSERT_TRUE(refinement_init(&r, sq.view(), no_points(), nullptr).ok());
     Extra whole(1 << 20), half(1 << 20), away(1 << 20);
-    refine_points(&r, sq.view(), sq.positions.data(), sq.normals.data(), nullptr, camera(0, 0, 0.25f, 0.3f),
-                  true, &whole.out, nullptr);
+    refine_points(&r, sq.view(), sq.positions.data(), sq.normals.data(), nullptr,
+                  camera(0, 0, 0.25f, 0.3f), true, &whole.out, nullptr);
     // Looking at the square's right edge: the left half is outside the view.
     refine_points(&r, sq.view(), sq.positions.data(), sq.normals.data(), nullptr,
                   camera(0.5f, 0.0f, 0.25f, 0.3f), true, &half.out, nullptr);
@@ -273,14 +287,16 @@ TEST(PointRefinement, OnlyWhatTheViewShowsAndTheBudgetHolds) {
     behind.view_projection = glm::perspective(glm::radians(90.0f), 1.0f, 0.01f, 10.0f) *
                              glm::lookAt(behind.eye, glm::vec3(0), glm::vec3(0, 1, 0));
     Extra back(1 << 20);
-    refine_points(&r, sq.view(), sq.positions.data(), sq.normals.data(), nullptr, behind, true, &back.out, nullptr);
+    refine_points(&r, sq.view(), sq.positions.data(), sq.normals.data(), nullptr, behind, true,
+                  &back.out, nullptr);
     EXPECT_EQ(back.out.count, 0u);
     // Unless the square is double-sided: then the back draws like the front, normals turned.
     const uint8_t both[2] = {1, 1};
     Extra back2(1 << 20), front(1 << 20);
-    refine_points(&r, sq.view(), sq.positions.data(), sq.normals.data(), both, behind, true, &back2.out, nullptr);
-    refine_points(&r, sq.view(), sq.positions.data(), sq.normals.data(), both, camera(0, 0, 1.0f, 0.3f), true,
-                  &front.out, nullptr);
+    refine_points(&r, sq.view(), sq.positions.data(), sq.normals.data(), both, behind, true,
+                  &back2.out, nullptr);
+    refine_points(&r, sq.view(), sq.positions.data(), sq.normals.data(), both,
+                  camera(0, 0, 1.0f, 0.3f), true, &front.out, nullptr);
     EXPECT_EQ(back2.out.count, front.out.count);
     ASSERT_GT(back2.out.count, 0u);
     EXPECT_FLOAT_EQ(back2.normals[2], -1.0f);
@@ -289,8 +305,8 @@ TEST(PointRefinement, OnlyWhatTheViewShowsAndTheBudgetHolds) {
     const uint32_t budget = whole.out.count / 10;
     Extra small(budget);
     RefinementStats stats;
-    refine_points(&r, sq.view(), sq.positions.data(), sq.normals.data(), nullptr, camera(0, 0, 0.25f, 0.3f),
-                  true, &small.out, &stats);
+    refine_points(&r, sq.view(), sq.positions.data(), sq.normals.data(), nullptr,
+                  camera(0, 0, 0.25f, 0.3f), true, &small.out, &stats);
     EXPECT_LE(small.out.count, budget);
     EXPECT_GT(small.out.count, budget * 8 / 10);
     EXPECT_LT(stats.budget_scale, 0.11f);

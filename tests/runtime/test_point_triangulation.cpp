@@ -4,12 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/glm.hpp>
 #include <random>
 #include <set>
 #include <tuple>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "runtime/point_triangulation.h"
 
@@ -17,7 +16,9 @@ namespace {
 
 using stipple::PointTriangulation;
 
-glm::vec3 at(const std::vector<float>& p, uint32_t i) { return glm::vec3(p[i * 3], p[i * 3 + 1], p[i * 3 + 2]); }
+glm::vec3 at(const std::vector<float>& p, uint32_t i) {
+    return glm::vec3(p[i * 3], p[i * 3 + 1], p[i * 3 + 2]);
+}
 
 // Evenly spread points on the unit sphere (Fibonacci lattice) with outward normals.
 void sphere(uint32_t n, std::vector<float>* p, std::vector<float>* nrm) {
@@ -34,7 +35,9 @@ TEST(PointTriangulation, ClosedSurfaceGetsAboutTwoTrianglesPerPoint) {
     std::vector<float> p, nrm;
     sphere(n, &p, &nrm);
     PointTriangulation t;
-    ASSERT_TRUE(stipple::triangulate_points(n, p.data(), nrm.data(), 4.0 * 3.14159265, nullptr, nullptr, &t).ok());
+    ASSERT_TRUE(
+        stipple::triangulate_points(n, p.data(), nrm.data(), 4.0 * 3.14159265, nullptr, nullptr, &t)
+            .ok());
     // Euler: a closed triangulation of n points has 2n - 4 triangles; allow a few misses.
     std::printf("sphere: %u points, %u triangles\n", n, t.triangle_count);
     EXPECT_GT(t.triangle_count, uint32_t(0.97 * (2 * n - 4)));
@@ -69,12 +72,14 @@ TEST(PointTriangulation, OpenSheetStopsAtItsBoundaryAndThinSheetsStayApart) {
     for (int sheet = 0; sheet < 2; ++sheet)
         for (int y = 0; y < side; ++y)
             for (int x = 0; x < side; ++x) {
-                p.insert(p.end(), {(float(x) + jitter(rng)) / side, (float(y) + jitter(rng)) / side, 0.05f * float(sheet)});
+                p.insert(p.end(), {(float(x) + jitter(rng)) / side, (float(y) + jitter(rng)) / side,
+                                   0.05f * float(sheet)});
                 nrm.insert(nrm.end(), {0.0f, 0.0f, sheet ? 1.0f : -1.0f});
             }
     const uint32_t n = uint32_t(p.size() / 3);
     PointTriangulation t;
-    ASSERT_TRUE(stipple::triangulate_points(n, p.data(), nrm.data(), 2.0, nullptr, nullptr, &t).ok());
+    ASSERT_TRUE(
+        stipple::triangulate_points(n, p.data(), nrm.data(), 2.0, nullptr, nullptr, &t).ok());
     std::printf("two sheets: %u points, %u triangles\n", n, t.triangle_count);
     const uint32_t per_sheet = side * side;
     // A planar triangulation of m points with b on the hull has 2m - 2 - b triangles.
@@ -87,7 +92,8 @@ TEST(PointTriangulation, OpenSheetStopsAtItsBoundaryAndThinSheetsStayApart) {
         ASSERT_LT(glm::length(at(p, tri[1]) - at(p, tri[0])), 3.5f / side);
     }
     PointTriangulation none;
-    ASSERT_TRUE(stipple::triangulate_points(2, p.data(), nrm.data(), 1.0, nullptr, nullptr, &none).ok());
+    ASSERT_TRUE(
+        stipple::triangulate_points(2, p.data(), nrm.data(), 1.0, nullptr, nullptr, &none).ok());
     EXPECT_EQ(none.triangle_count, 0u);
 }
 

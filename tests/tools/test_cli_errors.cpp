@@ -19,7 +19,9 @@ void write_file(const std::string& path, const std::string& text) {
     std::ofstream(path, std::ios::binary) << text;
 }
 
-bool exists(const std::string& path) { return std::ifstream(path).good(); }
+bool exists(const std::string& path) {
+    return std::ifstream(path).good();
+}
 
 // One line, prefixed with the tool's name, exit status 1 (not a signal).
 void expect_one_line_error(int rc, const std::string& log, const char* tool, const char* words) {

@@ -256,13 +256,13 @@ TEST(BakeStderr, ProgressFramesOnATerminal) {
     ASSERT_EQ(run("command -v script >/dev/null"), 0) << "util-linux `script` is missing";
     ScratchDir scratch;
     std::string log;
-    ASSERT_EQ(run("STIPPLE_PROGRESS_DELAY=0 script -qec " +
-                      quoted(bin("stipple-bake") + " " +
-                             source("assets/RiggedSimple/RiggedSimple.glb") + " -o " +
-                             scratch.file("c.stip") + " --points 2000") +
-                      " /dev/null",
-                  &log),
-              0)
+    ASSERT_EQ(
+        run("STIPPLE_PROGRESS_DELAY=0 script -qec " +
+                quoted(bin("stipple-bake") + " " + source("assets/RiggedSimple/RiggedSimple.glb") +
+                       " -o " + scratch.file("c.stip") + " --points 2000") +
+                " /dev/null",
+            &log),
+        0)
         << log;
     EXPECT_NE(log.find('\r'), std::string::npos) << log;
     EXPECT_NE(log.find("] 100%"), std::string::npos) << log;

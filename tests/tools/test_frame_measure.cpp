@@ -38,7 +38,8 @@ std::vector<m::Dot> square_grid(int n, float spacing, float offset, uint64_t fir
     std::vector<m::Dot> dots;
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i)
-            dots.push_back({first_id++, offset + spacing * float(i), offset + spacing * float(j), 2});
+            dots.push_back(
+                {first_id++, offset + spacing * float(i), offset + spacing * float(j), 2});
     return dots;
 }
 
@@ -60,8 +61,8 @@ TEST(FrameMeasure, HexGridIsPerfectlyEven) {
     uint64_t id = 0;
     for (int j = 0; j < 80; ++j)
         for (int i = 0; i < 80; ++i)
-            dots.push_back({id++, float(3 + spacing * i + (j % 2 ? spacing / 2 : 0)),
-                            float(3 + row * j), 1});
+            dots.push_back(
+                {id++, float(3 + spacing * i + (j % 2 ? spacing / 2 : 0)), float(3 + row * j), 1});
     const m::Evenness e = m::evenness(dots, full_mask(512, 512));
     EXPECT_EQ(e.dots, 80u * 80u);
     EXPECT_NEAR(e.median_nn, spacing, 1e-4);

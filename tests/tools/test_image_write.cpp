@@ -1,5 +1,6 @@
-// Tests for tools/image_write (PNG and APNG writers). The APNG file is checked chunk by chunk against the APNG 1.0 spec
-// (acTL, fcTL, fdAT) with a CRC written independently of the writer's table-driven one.
+// Tests for tools/image_write (PNG and APNG writers). The APNG file is checked chunk by chunk
+// against the APNG 1.0 spec (acTL, fcTL, fdAT) with a CRC written independently of the writer's
+// table-driven one.
 #include <gtest/gtest.h>
 #include <stb/stb_image.h>
 #include <sys/wait.h>
