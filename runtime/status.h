@@ -44,9 +44,6 @@ struct Status {
     bool ok() const { return code == StatusCode::ok; }
 };
 
-// The name asset loads used before Status covered every runtime failure.
-using LoadStatus = Status;
-
 // A failed Status with a printf-style message.
 [[nodiscard]] Status make_status(StatusCode code, const char* format, ...)
     __attribute__((format(printf, 2, 3)));

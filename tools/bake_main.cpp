@@ -232,7 +232,7 @@ int main(int argc, char** argv) {
     // Read the asset back with the runtime's validating loader before writing it, so a
     // bake never leaves an asset the runtime would refuse.
     stipple::Asset check;
-    stipple::LoadStatus loaded = stipple::load_asset_memory(bytes.data(), bytes.size(), &check);
+    stipple::Status loaded = stipple::load_asset_memory(bytes.data(), bytes.size(), &check);
     if (!loaded.ok()) {
         progress.finish();
         die(std::string("internal error: baked asset does not load: ") + loaded.message);

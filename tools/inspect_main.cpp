@@ -143,7 +143,7 @@ void add_quality(const stipple::Asset& a, const std::vector<uint32_t>& prefixes,
 int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
     stipple::Asset a;
-    stipple::LoadStatus st = stipple::load_asset_file(o.path.c_str(), &a);
+    stipple::Status st = stipple::load_asset_file(o.path.c_str(), &a);
     if (!st.ok()) {
         std::fprintf(stderr, "stipple-inspect: %s: %s\n", o.path.c_str(), st.message);
         return 1;

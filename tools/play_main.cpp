@@ -415,7 +415,7 @@ void print_stats(const Options& o, const stipple::Asset& asset, const Clips& cli
 int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
     stipple::Asset asset;
-    stipple::LoadStatus st = stipple::load_asset_file(o.asset.c_str(), &asset);
+    stipple::Status st = stipple::load_asset_file(o.asset.c_str(), &asset);
     if (!st.ok()) die(o.asset + ": " + st.message);
     const Clips clips = find_clips(asset, o);
     make_output_dir(o.out);

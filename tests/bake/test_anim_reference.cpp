@@ -403,7 +403,7 @@ struct Pipeline {
             points.radius = {1.0f};
             points.neighbour_offsets = {0, 0};
             std::vector<uint8_t> bytes = stipple::bake::encode_asset(scene, points);
-            stipple::LoadStatus st = stipple::load_asset_memory(bytes.data(), bytes.size(), &asset);
+            stipple::Status st = stipple::load_asset_memory(bytes.data(), bytes.size(), &asset);
             if (!st.ok()) {
                 *error = st.message;
                 return false;

@@ -87,7 +87,7 @@ TEST(AssetFormat, RoundTripKeepsEveryField) {
     make_scene(&s, &p);
     std::vector<uint8_t> bytes = bake::encode_asset(s, p);
     Asset a;
-    LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
+    Status st = load_asset_memory(bytes.data(), bytes.size(), &a);
     ASSERT_TRUE(st.ok()) << st.message;
     EXPECT_EQ(a.file_size, bytes.size());
     ASSERT_EQ(a.mesh.vertex_count, 4u);
@@ -151,7 +151,7 @@ TEST(AssetFormat, CompactPointsRoundTripWithinStatedError) {
     }
     std::vector<uint8_t> bytes = bake::encode_asset(s, p);
     Asset a;
-    LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
+    Status st = load_asset_memory(bytes.data(), bytes.size(), &a);
     ASSERT_TRUE(st.ok()) << st.message;
     EXPECT_EQ(a.version, 3);
     ASSERT_EQ(a.points.point_count, n);
@@ -199,7 +199,7 @@ TEST(AssetFormat, MorphTargetsRoundTrip) {
     s.clips[0].channels.push_back(w);
     std::vector<uint8_t> bytes = bake::encode_asset(s, p);
     Asset a;
-    LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
+    Status st = load_asset_memory(bytes.data(), bytes.size(), &a);
     ASSERT_TRUE(st.ok()) << st.message;
     ASSERT_TRUE(a.has_morph());
     EXPECT_EQ(a.morph.weight_count, 2u);
@@ -217,13 +217,13 @@ TEST(AssetFormat, TruncatedAssetIsRejectedAtEveryLength) {
     std::vector<uint8_t> bytes = encoded();
     for (size_t len = 0; len < bytes.size(); ++len) {
         Asset a;
-        LoadStatus st = load_asset_memory(bytes.data(), len, &a);
+        Status st = load_asset_memory(bytes.data(), len, &a);
         ASSERT_FALSE(st.ok()) << len;
         ASSERT_NE(st.message[0], '\0');
         EXPECT_EQ(a.points.point_count, 0u);
     }
     Asset a;
-    LoadStatus st = load_asset_memory(bytes.data(), bytes.size() - 7, &a);
+    Status st = load_asset_memory(bytes.data(), bytes.size() - 7, &a);
     EXPECT_EQ(st.error, LoadError::truncated);
     EXPECT_NE(std::strstr(st.message, "header says"), nullptr) << st.message;
 }
@@ -232,7 +232,7 @@ TEST(AssetFormat, CorruptedSectionIsNamed) {
     std::vector<uint8_t> bytes = encoded();
     bytes[section_offset(bytes, format::kTagPointStream) + 17] ^= 0x40;
     Asset a;
-    LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
+    Status st = load_asset_memory(bytes.data(), bytes.size(), &a);
     EXPECT_EQ(st.error, LoadError::checksum_mismatch);
     EXPECT_NE(std::strstr(st.message, "PNTQ"), nullptr) << st.message;
 }
@@ -245,7 +245,7 @@ TEST(AssetFormat, BadMagicAndVersionAreNamed) {
     EXPECT_EQ(load_asset_memory(other.data(), other.size(), &a).error, LoadError::bad_magic);
     other = bytes;
     other[4] = 9;
-    LoadStatus st = load_asset_memory(other.data(), other.size(), &a);
+    Status st = load_asset_memory(other.data(), other.size(), &a);
     EXPECT_EQ(st.error, LoadError::unsupported_version);
     EXPECT_NE(std::strstr(st.message, "version 9"), nullptr) << st.message;
 }
@@ -259,7 +259,7 @@ TEST(AssetFormat, OutOfRangeIndicesAreRejectedEvenWithValidChecksums) {
     p.host_triangle[1] = 7;
     std::vector<uint8_t> bytes = bake::encode_asset(s, p);
     Asset a;
-    LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
+    Status st = load_asset_memory(bytes.data(), bytes.size(), &a);
     EXPECT_EQ(st.error, LoadError::out_of_range);
     EXPECT_NE(std::strstr(st.message, "host triangle 7"), nullptr) << st.message;
 
@@ -295,7 +295,7 @@ TEST(AssetFormat, BoundsAndSidesRoundTrip) {
     s.double_sided = {0, 1};
     std::vector<uint8_t> bytes = bake::encode_asset(s, p);
     Asset a;
-    LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
+    Status st = load_asset_memory(bytes.data(), bytes.size(), &a);
     ASSERT_TRUE(st.ok()) << st.message;
     EXPECT_EQ(a.version, format::kVersion);
     ASSERT_TRUE(a.bounds.present);
@@ -349,7 +349,7 @@ TEST(AssetFormat, BadBoundsAndSidesAreRejected) {
     };
     std::vector<uint8_t> b = good;
     put(&b, sides + 8, 3);  // run (0, 3): beyond the 2 triangles
-    LoadStatus st = load(b);
+    Status st = load(b);
     EXPECT_EQ(st.error, LoadError::out_of_range);
     EXPECT_NE(std::strstr(st.message, "SIDE: run 0"), nullptr) << st.message;
     b = good;
@@ -383,7 +383,7 @@ TEST(AssetFormat, VersionTwoStillLoads) {
     const uint16_t two = 2;
     std::memcpy(&bytes[4], &two, 2);
     Asset a;
-    LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
+    Status st = load_asset_memory(bytes.data(), bytes.size(), &a);
     ASSERT_TRUE(st.ok()) << st.message;
     EXPECT_EQ(a.version, 2);
     EXPECT_FALSE(a.bounds.present);
@@ -415,7 +415,7 @@ TEST(AssetFormat, RandomCorruptionNeverCrashes) {
             for (int k = 0; k < flips; ++k) b[from + rng() % (b.size() - from)] = uint8_t(rng());
             if (trial % 2) fix_checksums(&b);
             Asset a;
-            LoadStatus st = load_asset_memory(b.data(), b.size(), &a);
+            Status st = load_asset_memory(b.data(), b.size(), &a);
             if (!st.ok()) {
                 ++rejected;
                 ASSERT_NE(st.message[0], '\0');

@@ -84,7 +84,7 @@ TEST(DoubleSided, RimOfAnOpenDoubleSidedSheetIsDrawnFromBehind) {
         quad_scene(&s, &p, double_sided ? std::vector<uint8_t>{1, 0} : std::vector<uint8_t>{});
         std::vector<uint8_t> bytes = bake::encode_asset(s, p);
         Asset a;
-        LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
+        Status st = load_asset_memory(bytes.data(), bytes.size(), &a);
         ASSERT_TRUE(st.ok()) << st.message;
         ASSERT_EQ(a.edges.edge_count, 5u);  // 4 rim edges (2 per triangle) and the diagonal
         uint8_t front[2];
@@ -139,7 +139,7 @@ TEST(DoubleSided, GltfMaterialDoubleSidedIsImportedPerTriangle) {
     p.neighbours = {1, 0};
     std::vector<uint8_t> bytes = bake::encode_asset(scene, p);
     Asset a;
-    LoadStatus st = load_asset_memory(bytes.data(), bytes.size(), &a);
+    Status st = load_asset_memory(bytes.data(), bytes.size(), &a);
     ASSERT_TRUE(st.ok()) << st.message;
     ASSERT_EQ(a.sides.run_count, 1u);
     EXPECT_EQ(a.sides.runs[0], 0u);
