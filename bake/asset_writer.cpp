@@ -6,6 +6,7 @@
 #include <cstring>
 #include <map>
 
+#include "bake/atomic_file.h"
 #include "bake/point_codec_encode.h"
 #include "bake/scene_bounds.h"
 #include "bake/silhouette_edges.h"
@@ -257,16 +258,7 @@ std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& p
 }
 
 BakeError write_asset(const std::string& path, const std::vector<uint8_t>& bytes) {
-    std::string tmp = path + ".tmp";
-    FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) return bake_error(BakeErrorCode::io, "cannot open '" + tmp + "' for writing");
-    bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
-    ok = (std::fclose(f) == 0) && ok;
-    if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        return bake_error(BakeErrorCode::io, "cannot write '" + path + "'");
-    }
-    return BakeError();
+    return write_file_atomically(path, bytes);
 }
 
 }  // namespace stipple::bake

@@ -13,8 +13,9 @@ namespace stipple::bake {
 // Builds the whole file in memory (byte-identical for identical inputs).
 std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points);
 
-// Writes to `path` through a temporary file and a rename, so a failed bake never leaves a
-// partial asset behind. Errors: io.
+// Writes to `path` through a uniquely named temporary file, fsync and a rename
+// (bake/atomic_file.h), so a failed bake never leaves a partial asset or a temp file behind.
+// Errors: io, naming the cause.
 [[nodiscard]] BakeError write_asset(const std::string& path, const std::vector<uint8_t>& bytes);
 
 }  // namespace stipple::bake

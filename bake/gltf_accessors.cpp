@@ -267,7 +267,9 @@ BakeError apply_sparse(const Model& model, const tinygltf::Accessor& acc, size_t
                        std::vector<T>* out) {
     const auto& sparse = acc.sparse;
     if (sparse.count < 1 || size_t(sparse.count) > acc.count) {
-        return malformed_input("sparse count " + str(sparse.count) +
+        // tinygltf keeps the low 32 bits of the JSON count in an int: a count of 2^31 or
+        // more reads as negative, so it is shown as the unsigned 32-bit value it was.
+        return malformed_input("sparse count " + str(size_t(uint32_t(sparse.count))) +
                                " out of range (accessor count " + str(acc.count) + ")");
     }
     const int ict = sparse.indices.componentType;

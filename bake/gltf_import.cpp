@@ -9,13 +9,14 @@
 #include <algorithm>
 #include <cassert>
 #include <cstring>
-#include <fstream>
 #include <new>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "bake/gltf_file_access.h"
 #include "bake/gltf_parts.h"
+#include "bake/input_file.h"
 #include "bake/scene_import.h"
 
 namespace stipple::bake {
@@ -52,27 +53,42 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
     return true;
 }
 
-// GLB starts with the magic "glTF" (§4 "GLB File Format Specification", header); anything
-// else is tried as JSON.
-BakeError detect_binary(const std::string& path, bool* binary) {
-    std::ifstream file(path, std::ios::binary);
-    if (!file) return bake_error(BakeErrorCode::io, "cannot open file");
-    char magic[4] = {};
-    file.read(magic, 4);
-    *binary = file.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0;
-    return BakeError();
+// The JSON text tinygltf will parse: the whole .gltf, or a GLB's first chunk (§4.4.3
+// "Chunks": 12-byte header, then chunk length, type, data). A GLB too short for a chunk
+// yields nothing here; tinygltf reports it.
+std::pair<const unsigned char*, size_t> json_text(const std::vector<unsigned char>& file,
+                                                  bool binary) {
+    if (!binary) return {file.data(), file.size()};
+    if (file.size() < 20) return {file.data(), 0};
+    uint32_t length = 0;
+    std::memcpy(&length, file.data() + 12, 4);
+    return {file.data() + 20, std::min<size_t>(length, file.size() - 20)};
 }
 
+// Reads the model file itself (a regular file under kMaxModelFileBytes), then lets
+// tinygltf parse it with file callbacks that confine buffer URIs to its folder.
 BakeError load_model(const std::string& path, Model* model, std::vector<std::string>* warnings) {
-    bool binary = false;
-    const BakeError opened = detect_binary(path, &binary);
-    if (!opened.ok()) return opened;
+    std::vector<unsigned char> file;
+    const BakeError read = read_input_file(path, kMaxModelFileBytes, &file);
+    if (!read.ok()) return read;
+    if (file.empty()) return malformed_input("not a valid glTF file: the file is empty");
+    // GLB starts with the magic "glTF" (§4.4.2 "Header"); anything else is tried as JSON.
+    const bool binary = file.size() >= 4 && std::memcmp(file.data(), "glTF", 4) == 0;
+    const auto json = json_text(file, binary);
+    const BakeError uris = gltf::check_data_uris(json.first, json.second);
+    if (!uris.ok()) return uris;
+    gltf::FileAccess access(path);
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&skip_image, nullptr);
+    loader.SetFsCallbacks(access.callbacks());
     std::string terr;
     std::string twarn;
-    const bool ok = binary ? loader.LoadBinaryFromFile(model, &terr, &twarn, path)
-                           : loader.LoadASCIIFromFile(model, &terr, &twarn, path);
+    const unsigned size = unsigned(file.size());  // < kMaxModelFileBytes
+    const bool ok = binary ? loader.LoadBinaryFromMemory(model, &terr, &twarn, file.data(), size,
+                                                         access.base_dir())
+                           : loader.LoadASCIIFromString(model, &terr, &twarn,
+                                                        reinterpret_cast<const char*>(file.data()),
+                                                        size, access.base_dir());
     size_t begin = 0;
     while (begin < twarn.size()) {
         size_t end = twarn.find('\n', begin);
@@ -82,6 +98,8 @@ BakeError load_model(const std::string& path, Model* model, std::vector<std::str
         begin = end + 1;
     }
     if (ok) return BakeError();
+    const std::string refused = access.refusal_in(terr);
+    if (!refused.empty()) return bake_error(BakeErrorCode::unsupported, refused);
     std::string why = first_line(terr);
     if (why.empty()) why = "unknown error";
     // tinygltf may quote a whole data URI; keep the log line readable.
@@ -93,8 +111,9 @@ bool contains(const std::vector<std::string>& list, const std::string& s) {
     return std::find(list.begin(), list.end(), s) != list.end();
 }
 
-// §3.12: a required extension must be understood. Material and texture extensions do not
-// change geometry; compressed geometry cannot be read without a decoder.
+// §3.12: "If a required extension is not supported by the client, the client must fail
+// loading the asset." Material and texture extensions do not change geometry, so they count
+// as understood; any other required extension (compressed geometry included) fails.
 BakeError check_extensions(const Model& model, std::vector<std::string>* warnings) {
     for (const std::string& ext : model.extensionsRequired) {
         if (ext == "KHR_draco_mesh_compression" || ext == "EXT_meshopt_compression") {
@@ -106,8 +125,8 @@ BakeError check_extensions(const Model& model, std::vector<std::string>* warning
             ext == "KHR_mesh_quantization" || ext.rfind("KHR_materials_", 0) == 0 ||
             ext.rfind("KHR_texture_", 0) == 0 || ext.rfind("EXT_texture_", 0) == 0;
         if (!harmless) {
-            warnings->push_back("required extension " + ext +
-                                " is not supported; the geometry may be incomplete");
+            return bake_error(BakeErrorCode::unsupported,
+                              "required extension " + ext + " is not supported");
         }
     }
     if (contains(model.extensionsUsed, "EXT_mesh_gpu_instancing")) {

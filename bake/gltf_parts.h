@@ -20,13 +20,14 @@
 #include "bake/bake_error.h"
 #include "bake/gltf_accessors.h"
 #include "bake/raw_scene.h"
+#include "runtime/asset_limits.h"
 
 namespace stipple::bake::gltf {
 
 using tinygltf::Model;
 
-// RawScene::joints is uint16_t.
-constexpr size_t kMaxJoints = size_t(1) << 16;
+// RawScene::joints is uint16_t; the loader's limit (runtime/asset_limits.h).
+constexpr size_t kMaxJoints = limits::kMaxJoints;
 
 inline std::string str(size_t v) {
     return std::to_string(v);

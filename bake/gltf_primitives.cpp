@@ -7,6 +7,7 @@
 #include "anim/finite.h"
 #include "bake/gltf_parts.h"
 #include "bake/vertex_normals.h"
+#include "runtime/asset_limits.h"
 
 namespace stipple::bake::gltf {
 
@@ -41,7 +42,7 @@ BakeError read_attributes(const MeshContext& ctx, const tinygltf::Primitive& pri
                                    position_formats, &out->positions);
     if (!read.ok()) return prefixed(label + " POSITION: ", read);
     out->vertex_count = out->positions.size() / 3;
-    if (out->vertex_count > std::numeric_limits<uint32_t>::max()) {
+    if (out->vertex_count > limits::kMaxVertices) {
         return bake_error(BakeErrorCode::unsupported, label + ": too many vertices");
     }
     const auto normal_it = prim.attributes.find("NORMAL");

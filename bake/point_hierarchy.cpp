@@ -578,6 +578,7 @@ BakeError build(const RawScene& scene, const HierarchyConfig& config, PointHiera
     } else {
         build_by_simplification(b, config, out, stats);
     }
+    if (stats) stats->projection_candidates = b.surface->candidates_examined();
     return BakeError();
 }
 

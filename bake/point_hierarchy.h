@@ -81,6 +81,9 @@ struct HierarchyStats {
     uint32_t slivers_after_subdivision = 0;   // the same after subdivision
     uint32_t levels = 0;            // relax: levels of the patch hierarchy; eliminate: halvings
     uint32_t relax_iterations = 0;  // relax: token relaxation iterations, all levels
+    // simplify, relax: input triangles examined by the projections (bake/surface_projection.h;
+    // a work counter: it grows linearly with the mesh whatever its connectivity).
+    uint64_t projection_candidates = 0;
 };
 
 // Errors: malformed_input (no triangles, a non-finite position, an index out of range, no

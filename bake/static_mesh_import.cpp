@@ -6,7 +6,6 @@
 #include <cassert>
 #include <cctype>
 #include <cmath>
-#include <fstream>
 #include <iostream>
 #include <limits>
 #include <map>
@@ -16,8 +15,10 @@
 #include <vector>
 
 #include "anim/finite.h"
+#include "bake/input_file.h"
 #include "bake/scene_import.h"
 #include "bake/vertex_normals.h"
+#include "runtime/asset_limits.h"
 
 namespace stipple::bake {
 
@@ -81,15 +82,26 @@ void add_reader_warnings(const std::vector<std::string>& messages, RawScene* sce
     }
     for (const std::string& m : distinct) {
         const size_t n = counts[m];
+        const bool vertex = m.find("add_face: complex vertex") != std::string::npos;
+        if (vertex || m.find("add_face: complex edge") != std::string::npos) {
+            // The reader re-adds such a face on copies of its corners (OpenMesh ImporterT).
+            scene->warnings.push_back("OpenMesh reader: " + std::to_string(n) +
+                                      (n == 1 ? " face hit a complex " : " faces hit a complex ") +
+                                      (vertex ? "vertex" : "edge") +
+                                      "; kept on duplicated vertices");
+            continue;
+        }
         scene->warnings.push_back("OpenMesh reader: " + m +
                                   (n > 1 ? " (" + std::to_string(n) + " times)" : ""));
     }
 }
 
 BakeError read_static_mesh(const std::string& path, RawScene* scene) {
-    if (!std::ifstream(path, std::ios::binary)) {
-        return bake_error(BakeErrorCode::io, "cannot open file");
-    }
+    // Only a regular file under the cap reaches OpenMesh's readers (a directory or
+    // /dev/zero would otherwise be read until memory runs out).
+    uint64_t size = 0;
+    const BakeError checked = check_input_file(path, kMaxModelFileBytes, &size);
+    if (!checked.ok()) return checked;
     OpenMesh::TriMesh_ArrayKernelT<> mesh;
     bool ok = false;
     std::vector<std::string> messages;
@@ -105,7 +117,7 @@ BakeError read_static_mesh(const std::string& path, RawScene* scene) {
                                (messages.empty() ? std::string() : ": " + messages.front()));
     }
     add_reader_warnings(messages, scene);
-    if (mesh.n_vertices() > std::numeric_limits<uint32_t>::max()) {
+    if (mesh.n_vertices() > limits::kMaxVertices) {
         return bake_error(BakeErrorCode::unsupported, "too many vertices");
     }
     // Triangles as fans over each face's vertex loop (a TriMesh already holds triangles;

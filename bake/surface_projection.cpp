@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
+#include <utility>
 
 namespace stipple::bake {
 
@@ -32,39 +34,132 @@ Vec3d closest_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const 
 
 }  // namespace
 
+void NearestTree::build(std::vector<double> xyz, std::vector<uint32_t> ids) {
+    xyz_ = std::move(xyz);
+    ids_ = std::move(ids);
+    order_.resize(xyz_.size() / 3);
+    std::iota(order_.begin(), order_.end(), 0u);
+    axis_.assign(order_.size(), 0);
+    build_range(0, uint32_t(order_.size()));
+}
+
+// Splits [lo, hi) at its median along its widest axis (ties by index: deterministic).
+void NearestTree::build_range(uint32_t lo, uint32_t hi) {
+    while (hi - lo > 1) {
+        double mn[3] = {1e300, 1e300, 1e300}, mx[3] = {-1e300, -1e300, -1e300};
+        for (uint32_t i = lo; i < hi; ++i)
+            for (int k = 0; k < 3; ++k) {
+                mn[k] = std::min(mn[k], xyz_[size_t(order_[i]) * 3 + size_t(k)]);
+                mx[k] = std::max(mx[k], xyz_[size_t(order_[i]) * 3 + size_t(k)]);
+            }
+        int a = 0;
+        for (int k = 1; k < 3; ++k)
+            if (mx[k] - mn[k] > mx[a] - mn[a]) a = k;
+        const uint32_t mid = lo + (hi - lo) / 2;
+        std::nth_element(order_.begin() + lo, order_.begin() + mid, order_.begin() + hi,
+                         [&](uint32_t x, uint32_t y) {
+                             const double cx = xyz_[size_t(x) * 3 + size_t(a)];
+                             const double cy = xyz_[size_t(y) * 3 + size_t(a)];
+                             return cx != cy ? cx < cy : x < y;
+                         });
+        axis_[mid] = uint8_t(a);
+        build_range(lo, mid);
+        lo = mid + 1;
+    }
+}
+
+void NearestTree::nearest(const Vec3d& p, int k, std::vector<uint32_t>* out) const {
+    using Entry = std::pair<double, uint32_t>;  // (squared distance, point): a max-heap
+    std::vector<Entry> heap;
+    const size_t want = size_t(std::max(k, 1));
+    struct Range {
+        uint32_t lo, hi;
+        double bound;  // a lower bound of the squared distance to its centroids
+    };
+    std::vector<Range> stack{{0u, uint32_t(order_.size()), 0.0}};
+    while (!stack.empty()) {
+        const Range r = stack.back();
+        stack.pop_back();
+        if (r.lo >= r.hi || (heap.size() == want && r.bound > heap.front().first)) continue;
+        const uint32_t mid = r.lo + (r.hi - r.lo) / 2, t = order_[mid];
+        const double* c = &xyz_[size_t(t) * 3];
+        const Entry e{(p[0] - c[0]) * (p[0] - c[0]) + (p[1] - c[1]) * (p[1] - c[1]) +
+                          (p[2] - c[2]) * (p[2] - c[2]),
+                      t};
+        if (heap.size() < want || e < heap.front()) {
+            if (heap.size() == want) {
+                std::pop_heap(heap.begin(), heap.end());
+                heap.pop_back();
+            }
+            heap.push_back(e);
+            std::push_heap(heap.begin(), heap.end());
+        }
+        // The far side is at least |diff| away (exactly, in floating point too); it is
+        // searched after the near side, when the heap has its tightest bound.
+        const double diff = p[axis_[mid]] - c[axis_[mid]];
+        const Range low{r.lo, mid, r.bound}, high{mid + 1, r.hi, r.bound};
+        const double far_bound = std::max(r.bound, diff * diff);
+        if (diff < 0) {
+            stack.push_back({high.lo, high.hi, far_bound});
+            stack.push_back(low);
+        } else {
+            stack.push_back({low.lo, low.hi, far_bound});
+            stack.push_back(high);
+        }
+    }
+    for (const Entry& e : heap) out->push_back(ids_[e.second]);
+}
+
 InputSurface::InputSurface(const RawScene& scene, const std::vector<uint32_t>& welded)
     : scene_(scene) {
     const size_t tris = scene.triangle_count();
     normals_.resize(tris);
     uint32_t classes = 0;
     for (uint32_t w : welded) classes = std::max(classes, w + 1);
-    // Triangles around each welded vertex, then around each triangle (CSR).
-    std::vector<uint32_t> offsets(classes + 1, 0), around;
-    for (size_t t = 0; t < tris; ++t)
-        for (int k = 0; k < 3; ++k) ++offsets[welded[scene.indices[t * 3 + size_t(k)]] + 1];
-    for (uint32_t c = 0; c < classes; ++c) offsets[c + 1] += offsets[c];
-    around.resize(offsets[classes]);
-    std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
+    // Triangles around each welded vertex (CSR): 3T entries whatever the connectivity. The
+    // triangles near a triangle are gathered from them per projection, not stored per
+    // triangle (that was quadratic in the valence: a fan of T triangles stored T^2).
+    corner_class_.resize(tris * 3);
+    for (size_t i = 0; i < tris * 3; ++i) corner_class_[i] = welded[scene.indices[i]];
+    around_offsets_.assign(classes + 1, 0);
+    for (uint32_t c : corner_class_) ++around_offsets_[c + 1];
+    for (uint32_t c = 0; c < classes; ++c) around_offsets_[c + 1] += around_offsets_[c];
+    around_.resize(around_offsets_[classes]);
+    std::vector<uint32_t> fill(around_offsets_.begin(), around_offsets_.end() - 1);
     for (uint32_t t = 0; t < tris; ++t) {
-        for (int k = 0; k < 3; ++k)
-            around[fill[welded[scene.indices[size_t(t) * 3 + size_t(k)]]]++] = t;
+        for (int k = 0; k < 3; ++k) around_[fill[corner_class_[size_t(t) * 3 + size_t(k)]]++] = t;
         const Vec3d n = (corner(t, 1) - corner(t, 0)) % (corner(t, 2) - corner(t, 0));
         const double len = n.norm();
         normals_[t] = len > 0 ? n / len : Vec3d(0, 0, 0);
         area_ += 0.5 * len;
     }
-    near_offsets_.assign(tris + 1, 0);
-    std::vector<uint32_t> list;
-    for (uint32_t t = 0; t < tris; ++t) {
-        list.clear();
-        for (int k = 0; k < 3; ++k) {
-            uint32_t c = welded[scene.indices[size_t(t) * 3 + size_t(k)]];
-            list.insert(list.end(), around.begin() + offsets[c], around.begin() + offsets[c + 1]);
+    build_hubs(classes);
+}
+
+// Each hub's triangles by their direction from the hub (the unit vector to the centroid): in
+// a fan or a star the triangles near a point around the hub are those in its direction.
+void InputSurface::build_hubs(uint32_t classes) {
+    for (uint32_t c = 0; c < classes; ++c) {
+        const uint32_t b = around_offsets_[c], e = around_offsets_[c + 1];
+        if (e - b <= kHubValence) continue;
+        if (hub_of_class_.empty()) hub_of_class_.assign(classes, UINT32_MAX);
+        hub_of_class_[c] = uint32_t(hubs_.size());
+        hubs_.emplace_back();
+        Hub& hub = hubs_.back();
+        const uint32_t t0 = around_[b];
+        for (int k = 0; k < 3; ++k)
+            if (corner_class_[size_t(t0) * 3 + size_t(k)] == c) hub.centre = corner(t0, k);
+        std::vector<double> xyz;
+        xyz.reserve(size_t(e - b) * 3);
+        for (uint32_t i = b; i < e; ++i) {
+            const uint32_t t = around_[i];
+            Vec3d d = (corner(t, 0) + corner(t, 1) + corner(t, 2)) / 3.0 - hub.centre;
+            const double len = d.norm();
+            if (len > 0) d /= len;
+            xyz.insert(xyz.end(), {d[0], d[1], d[2]});
         }
-        std::sort(list.begin(), list.end());
-        list.erase(std::unique(list.begin(), list.end()), list.end());
-        near_.insert(near_.end(), list.begin(), list.end());
-        near_offsets_[t + 1] = uint32_t(near_.size());
+        hub.directions.build(std::move(xyz),
+                             std::vector<uint32_t>(around_.begin() + b, around_.begin() + e));
     }
 }
 
@@ -95,14 +190,35 @@ SurfacePoint InputSurface::locate(uint32_t t, const Vec3d& p) const {
     return out;
 }
 
-SurfacePoint InputSurface::project(const Vec3d& p, const Vec3d& direction, const uint32_t* seeds,
-                                   int seed_count) const {
+// The triangles sharing a welded vertex with a seed, sorted. A hub's triangles are replaced
+// by the kHubNearest in p's direction, so a projection costs about O(k log T) there instead
+// of O(valence); without hubs the candidates are exactly the vertex-sharing ones.
+void InputSurface::gather(const Vec3d& p, const uint32_t* seeds, int seed_count) const {
     candidates_.clear();
-    for (int i = 0; i < seed_count; ++i)
-        candidates_.insert(candidates_.end(), near_.begin() + near_offsets_[seeds[i]],
-                           near_.begin() + near_offsets_[seeds[i] + 1]);
+    for (int i = 0; i < seed_count; ++i) {
+        candidates_.push_back(seeds[i]);
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t c = corner_class_[size_t(seeds[i]) * 3 + size_t(k)];
+            const uint32_t b = around_offsets_[c], e = around_offsets_[c + 1];
+            if (e - b <= kHubValence) {
+                candidates_.insert(candidates_.end(), around_.begin() + b, around_.begin() + e);
+                continue;
+            }
+            const Hub& hub = hubs_[hub_of_class_[c]];
+            Vec3d d = p - hub.centre;
+            const double len = d.norm();
+            if (len > 0) d /= len;
+            hub.directions.nearest(d, kHubNearest, &candidates_);
+        }
+    }
     std::sort(candidates_.begin(), candidates_.end());
     candidates_.erase(std::unique(candidates_.begin(), candidates_.end()), candidates_.end());
+    examined_ += candidates_.size();
+}
+
+SurfacePoint InputSurface::project(const Vec3d& p, const Vec3d& direction, const uint32_t* seeds,
+                                   int seed_count) const {
+    gather(p, seeds, seed_count);
 
     // Line/triangle intersection (Moller-Trumbore, both directions along the line).
     const double dir_len = direction.norm();

@@ -6,6 +6,7 @@
 
 #include "bake/level_order.h"
 #include "bake/patch_hierarchy.h"
+#include "bake/point_grid.h"
 
 namespace stipple::bake {
 
@@ -38,6 +39,72 @@ Centres random_centres(const BaseMesh& base, Rng* rng) {
     return c;
 }
 
+// A vertex of more polygons than this is a hub (a fan's centre, a non-manifold star):
+// scanning its polygons for every point in one of them is quadratic in its valence.
+constexpr uint32_t kHubValence = 64;
+
+bool touches_hub(const BaseMesh& base, uint32_t f) {
+    for (int k = 0; k < 3; ++k) {
+        const uint32_t v = base.faces[size_t(f) * 3 + size_t(k)];
+        if (base.vf_offsets[v + 1] - base.vf_offsets[v] > kHubValence) return true;
+    }
+    return false;
+}
+
+bool share_vertex(const BaseMesh& base, uint32_t f, uint32_t g) {
+    for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+            if (base.faces[size_t(f) * 3 + size_t(a)] == base.faces[size_t(g) * 3 + size_t(b)])
+                return true;
+    return false;
+}
+
+// Alg. 5.2's neighbours of point i (the points in polygons sharing a vertex with its host),
+// in the order they are summed: by polygon, then by point. Around a hub they are found by a
+// grid of cell `radius` (only those closer than the radius push), so a point costs O(1)
+// there too; the set and its order are the same, so the sums are the same to the bit.
+struct NeighbourSearch {
+    const BaseMesh& base;
+    std::vector<uint32_t> offsets, in_face, around, near;
+    std::vector<double> xyz;
+    PointGrid grid;
+    bool hubs = false;
+
+    void index(const Centres& c, double radius) {
+        const uint32_t n = uint32_t(c.face.size());
+        // Points by host polygon (counting sort, so the order is the points' order).
+        offsets.assign(size_t(base.face_count()) + 1, 0);
+        for (uint32_t f : c.face) ++offsets[f + 1];
+        for (uint32_t f = 0; f < base.face_count(); ++f) offsets[f + 1] += offsets[f];
+        in_face.resize(n);
+        std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
+        for (uint32_t i = 0; i < n; ++i) in_face[fill[c.face[i]]++] = i;
+        if (!hubs) return;
+        xyz.resize(size_t(n) * 3);
+        for (uint32_t i = 0; i < n; ++i)
+            for (int k = 0; k < 3; ++k) xyz[size_t(i) * 3 + size_t(k)] = c.position[i][k];
+        grid.build(xyz.data(), n, radius);
+    }
+
+    const std::vector<uint32_t>& of(const Centres& c, uint32_t i) {
+        near.clear();
+        const uint32_t f = c.face[i];
+        if (hubs && touches_hub(base, f)) {
+            grid.visit(&xyz[size_t(i) * 3], 1, [&](uint32_t j) {
+                if (share_vertex(base, f, c.face[j])) near.push_back(j);
+            });
+            std::sort(near.begin(), near.end(), [&](uint32_t a, uint32_t b) {
+                return c.face[a] != c.face[b] ? c.face[a] < c.face[b] : a < b;
+            });
+            return near;
+        }
+        base.faces_around(f, &around);
+        for (uint32_t g : around)
+            near.insert(near.end(), in_face.begin() + offsets[g], in_face.begin() + offsets[g + 1]);
+        return near;
+    }
+};
+
 // Thesis Alg. 5.1 with the neighbours of Alg. 5.2: each point is pushed by the points
 // closer than the repulsion radius among those in its host polygon and the polygons sharing
 // a vertex with it (hosts are updated as points move: "the relevant neighbors is the set of
@@ -49,28 +116,21 @@ void primary_relaxation(const BaseMesh& base, double area, const RelaxConfig& co
     const uint32_t n = uint32_t(c->face.size());
     const double radius = config.repulsion_k * std::sqrt(area / double(n));
     std::vector<Vec3d> step(n);
-    std::vector<uint32_t> offsets, in_face, around;
+    NeighbourSearch search{base};
+    for (uint32_t f = 0; f < base.face_count() && !search.hubs; ++f)
+        search.hubs = touches_hub(base, f);
     for (int it = 0; it < config.primary_iterations; ++it) {
-        // Points by host polygon (counting sort, so the order is the points' order).
-        offsets.assign(size_t(base.face_count()) + 1, 0);
-        for (uint32_t f : c->face) ++offsets[f + 1];
-        for (uint32_t f = 0; f < base.face_count(); ++f) offsets[f + 1] += offsets[f];
-        in_face.resize(n);
-        std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
-        for (uint32_t i = 0; i < n; ++i) in_face[fill[c->face[i]]++] = i;
+        search.index(*c, radius);
         for (uint32_t i = 0; i < n; ++i) {
-            base.faces_around(c->face[i], &around);
             Vec3d force(0, 0, 0);
             int count = 0;
-            for (uint32_t f : around)
-                for (uint32_t k = offsets[f]; k < offsets[f + 1]; ++k) {
-                    const uint32_t j = in_face[k];
-                    const Vec3d d = c->position[i] - c->position[j];
-                    const double len = d.norm();
-                    if (j == i || len >= radius || len <= 0) continue;
-                    force += d * ((radius - len) / len);
-                    ++count;
-                }
+            for (uint32_t j : search.of(*c, i)) {
+                const Vec3d d = c->position[i] - c->position[j];
+                const double len = d.norm();
+                if (j == i || len >= radius || len <= 0) continue;
+                force += d * ((radius - len) / len);
+                ++count;
+            }
             step[i] = count ? force * (config.primary_step / count) : Vec3d(0, 0, 0);
         }
         for (uint32_t i = 0; i < n; ++i)

@@ -1,47 +1,71 @@
 #include "runtime/asset.h"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <new>
+#include <system_error>
 
 #include "anim/finite.h"
 #include "runtime/asset_format.h"
-#include "runtime/point_codec.h"
+#include "runtime/asset_limits.h"
+#include "runtime/asset_parse.h"
 
 namespace stipple {
 
+namespace detail {
+
+Status charge(DecodeBudget* budget, uint64_t bytes, const char* section) {
+    if (bytes > budget->limit - budget->used)
+        return load_failure(
+            LoadError::decoded_size_limit,
+            "%s: decoding needs %llu more bytes, over the limit of %llu (%llu taken)", section,
+            static_cast<unsigned long long>(bytes), static_cast<unsigned long long>(budget->limit),
+            static_cast<unsigned long long>(budget->used));
+    budget->used += bytes;
+    return {};
+}
+
+Status check_limit(const char* section, const char* what, uint64_t count, uint64_t limit) {
+    if (count <= limit) return {};
+    return load_failure(LoadError::count_over_limit, "%s: %s %llu over the limit of %llu", section,
+                        what, static_cast<unsigned long long>(count),
+                        static_cast<unsigned long long>(limit));
+}
+
+}  // namespace detail
+
 namespace {
 
-// Bounds-checked cursor over one section. Every take() checks the remaining size first,
-// so a lying count can only produce an error, never an out-of-bounds view.
-struct Reader {
-    const uint8_t* data;
-    size_t size;
-    size_t at = 0;
-    bool ok = true;
+using detail::check_limit;
+using detail::DecodeBudget;
+using detail::Reader;
 
-    template <typename T>
-    const T* take(size_t count) {
-        size_t align = alignof(T);
-        size_t start = (at + align - 1) / align * align;
-        if (!ok || count > (size - start) / sizeof(T) || start > size) {
-            ok = false;
-            return nullptr;
-        }
-        at = start + count * sizeof(T);
-        return reinterpret_cast<const T*>(data + start);
+// Each normal is zero (no direction: the bake writes one for a vertex whose faces are all
+// degenerate, and skinning keeps it zero) or of unit length within the tolerance.
+Status check_normals(const float* normals, uint32_t vertex_count) {
+    const float tol = limits::kNormalLengthTolerance;
+    for (uint32_t v = 0; v < vertex_count; ++v) {
+        const float* n = normals + size_t(v) * 3;
+        const float len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        if (len2 != 0.0f && !(len2 >= (1 - tol) * (1 - tol) && len2 <= (1 + tol) * (1 + tol)))
+            return load_failure(LoadError::bad_normal,
+                                "MESH: vertex %u normal length %g is neither 0 nor 1 (+-%g)", v,
+                                double(std::sqrt(len2)), double(tol));
     }
-    uint32_t u32() {
-        const uint32_t* p = take<uint32_t>(1);
-        return p ? *p : 0;
-    }
-};
+    return {};
+}
 
 Status parse_mesh(Reader r, MeshView* m) {
     m->vertex_count = r.u32();
     m->triangle_count = r.u32();
+    Status st = check_limit("MESH", "vertex count", m->vertex_count, limits::kMaxVertices);
+    if (st.ok())
+        st = check_limit("MESH", "triangle count", m->triangle_count, limits::kMaxTriangles);
+    if (!st.ok()) return st;
     m->positions = r.take<float>(size_t(m->vertex_count) * 3);
     m->normals = r.take<float>(size_t(m->vertex_count) * 3);
     m->indices = r.take<uint32_t>(size_t(m->triangle_count) * 3);
@@ -50,7 +74,8 @@ Status parse_mesh(Reader r, MeshView* m) {
                             "MESH: size does not match %u vertices, %u triangles", m->vertex_count,
                             m->triangle_count);
     if (m->vertex_count == 0 || m->triangle_count == 0)
-        return load_failure(LoadError::malformed_section, "MESH: empty mesh");
+        return load_failure(LoadError::zero_count, "MESH: empty mesh (%u vertices, %u triangles)",
+                            m->vertex_count, m->triangle_count);
     for (size_t i = 0; i < size_t(m->triangle_count) * 3; ++i)
         if (m->indices[i] >= m->vertex_count)
             return load_failure(LoadError::out_of_range, "MESH: index %u at %zu >= vertex count %u",
@@ -58,6 +83,27 @@ Status parse_mesh(Reader r, MeshView* m) {
     if (!all_finite(m->positions, size_t(m->vertex_count) * 3) ||
         !all_finite(m->normals, size_t(m->vertex_count) * 3))
         return load_failure(LoadError::bad_value, "MESH: non-finite position or normal");
+    return check_normals(m->normals, m->vertex_count);
+}
+
+// Each vertex's 4 weights are in [0, 1] and sum to 1 within the tolerance (the bake writes
+// w / sum in floats: a few 1e-7 off).
+Status check_weights(const float* weights, uint32_t vertex_count) {
+    for (uint32_t v = 0; v < vertex_count; ++v) {
+        const float* w = weights + size_t(v) * 4;
+        float sum = 0.0f;
+        for (int k = 0; k < 4; ++k) {
+            if (!(w[k] >= 0.0f && w[k] <= 1.0f))
+                return load_failure(LoadError::bad_skin_weight,
+                                    "SKIN: vertex %u weight %d is %g, not in [0, 1]", v, k,
+                                    double(w[k]));
+            sum += w[k];
+        }
+        if (std::fabs(sum - 1.0f) > limits::kWeightSumTolerance)
+            return load_failure(LoadError::bad_skin_weight,
+                                "SKIN: vertex %u weights sum to %g, not 1 (+-%g)", v, double(sum),
+                                double(limits::kWeightSumTolerance));
+    }
     return {};
 }
 
@@ -65,6 +111,9 @@ Status parse_skin(Reader r, uint32_t vertex_count, SkinView* s) {
     anim::Skeleton& k = s->skeleton;
     k.node_count = r.u32();
     k.joint_count = r.u32();
+    Status st = check_limit("SKIN", "node count", k.node_count, limits::kMaxNodes);
+    if (st.ok()) st = check_limit("SKIN", "joint count", k.joint_count, limits::kMaxJoints);
+    if (!st.ok()) return st;
     k.parents = r.take<int32_t>(k.node_count);
     k.rest = r.take<anim::Trs>(k.node_count);
     k.joint_nodes = r.take<uint32_t>(k.joint_count);
@@ -75,9 +124,9 @@ Status parse_skin(Reader r, uint32_t vertex_count, SkinView* s) {
         return load_failure(LoadError::malformed_section,
                             "SKIN: size does not match %u nodes, %u joints", k.node_count,
                             k.joint_count);
-    if (k.joint_count == 0 || k.joint_count > 65535)
-        return load_failure(LoadError::malformed_section, "SKIN: joint count %u not in [1, 65535]",
-                            k.joint_count);
+    if (k.joint_count == 0 || k.node_count == 0)
+        return load_failure(LoadError::zero_count, "SKIN: %u nodes, %u joints (need >= 1 each)",
+                            k.node_count, k.joint_count);
     const anim::DataError e = anim::check_skeleton(k);  // parents, joint nodes, finite rest
     if (e != anim::DataError::ok)
         return load_failure(
@@ -89,148 +138,15 @@ Status parse_skin(Reader r, uint32_t vertex_count, SkinView* s) {
             return load_failure(LoadError::out_of_range,
                                 "SKIN: vertex %zu joint %u >= joint count %u", i / 4, s->joints[i],
                                 k.joint_count);
-    if (!all_finite(s->weights, size_t(vertex_count) * 4))
-        return load_failure(LoadError::bad_value, "SKIN: non-finite weight");
-    return {};
-}
-
-// Columns of one key's value: the value width, three times that for CUBICSPLINE.
-uint64_t columns_of(const format::ChannelRecordV2& c) {
-    uint64_t width = c.path == 1 ? 4 : c.path == 3 ? c.weight_count : 3;
-    return c.interp == 2 ? width * 3 : width;
-}
-
-// The CLIP section's records and pools, as read (sizes checked, contents not yet).
-struct ClipSection {
-    uint32_t clip_count, channel_count, time_array_count, time_count, range_count, code_count,
-        name_bytes;
-    const format::ClipRecord* clips;
-    const format::ChannelRecordV2* channels;
-    const format::TimeArrayRecord* arrays;
-    const float* times;
-    const float* ranges;
-    const uint16_t* codes;
-    const char* names;
-};
-
-Status read_clip_section(Reader r, ClipSection* c) {
-    uint32_t n[7];
-    for (uint32_t& x : n) x = r.u32();
-    *c = {n[0], n[1], n[2], n[3], n[4], n[5], n[6]};
-    c->clips = r.take<format::ClipRecord>(c->clip_count);
-    c->channels = r.take<format::ChannelRecordV2>(c->channel_count);
-    c->arrays = r.take<format::TimeArrayRecord>(c->time_array_count);
-    c->times = r.take<float>(c->time_count);
-    c->ranges = r.take<float>(c->range_count);
-    c->codes = r.take<uint16_t>(c->code_count);
-    c->names = r.take<char>(c->name_bytes);
-    if (!r.ok || r.at != r.size)
-        return load_failure(LoadError::malformed_section,
-                            "CLIP: size does not match %u clips, %u channels", c->clip_count,
-                            c->channel_count);
-    if (c->name_bytes == 0 || c->names[c->name_bytes - 1] != '\0')
-        return load_failure(LoadError::malformed_section, "CLIP: name pool not NUL-terminated");
-    if (!all_finite(c->times, c->time_count) || !all_finite(c->ranges, c->range_count))
-        return load_failure(LoadError::bad_value, "CLIP: non-finite key time or range");
-    return {};
-}
-
-// Every time array and channel record lies inside its pools; *value_total = decoded floats.
-Status check_channel_records(const ClipSection& c, uint64_t* value_total) {
-    for (uint32_t i = 0; i < c.time_array_count; ++i)
-        if (c.arrays[i].offset > c.time_count ||
-            c.arrays[i].count > c.time_count - c.arrays[i].offset)
-            return load_failure(LoadError::out_of_range,
-                                "CLIP: time array %u outside the time pool", i);
-    *value_total = 0;
-    for (uint32_t i = 0; i < c.channel_count; ++i) {
-        const format::ChannelRecordV2& ch = c.channels[i];
-        const uint64_t columns = columns_of(ch), values = columns * ch.key_count;
-        if (ch.path > 3 || ch.interp > 2 || ch.time_array >= c.time_array_count || columns == 0 ||
-            c.arrays[ch.time_array].count != ch.key_count || ch.codes_offset > c.code_count ||
-            values > c.code_count - ch.codes_offset || ch.ranges_offset > c.range_count ||
-            columns * 2 > c.range_count - ch.ranges_offset)
-            return load_failure(LoadError::out_of_range,
-                                "CLIP: channel %u (path %u, interp %u, %u keys) outside its pools",
-                                i, ch.path, ch.interp, ch.key_count);
-        *value_total += values;
-    }
-    return {};
-}
-
-// Decodes every channel's 16-bit codes into a->clip_values and fills a->channel_storage.
-void decode_channels(const ClipSection& c, Asset* a) {
-    float* out = a->clip_values.get();
-    for (uint32_t i = 0; i < c.channel_count; ++i) {
-        const format::ChannelRecordV2& ch = c.channels[i];
-        const uint64_t columns = columns_of(ch);
-        const float* range = c.ranges + ch.ranges_offset;
-        const uint16_t* code = c.codes + ch.codes_offset;
-        for (uint64_t k = 0; k < ch.key_count; ++k)
-            for (uint64_t col = 0; col < columns; ++col) {
-                const float lo = range[col * 2], hi = range[col * 2 + 1];
-                out[k * columns + col] =
-                    lo + (hi - lo) * (float(code[k * columns + col]) / 65535.0f);
-            }
-        a->channel_storage[i] = {ch.node,
-                                 anim::Path(ch.path),
-                                 anim::Interp(ch.interp),
-                                 ch.key_count,
-                                 c.times + c.arrays[ch.time_array].offset,
-                                 out,
-                                 ch.weight_begin,
-                                 ch.weight_count};
-        out += columns * ch.key_count;
-    }
-}
-
-// Fills a->clip_storage from the clip records and checks each clip (anim::check_clip).
-Status build_clips(const ClipSection& c, uint32_t node_count, uint32_t morph_slots, Asset* a) {
-    for (uint32_t i = 0; i < c.clip_count; ++i) {
-        const format::ClipRecord& rec = c.clips[i];
-        if (rec.name_offset >= c.name_bytes || rec.channel_begin > c.channel_count ||
-            rec.channel_count > c.channel_count - rec.channel_begin)
-            return load_failure(LoadError::out_of_range,
-                                "CLIP: clip %u name or channels out of range", i);
-        a->clip_storage[i] = {c.names + rec.name_offset, rec.duration, rec.channel_count,
-                              a->channel_storage.get() + rec.channel_begin};
-        uint32_t bad = 0;
-        anim::DataError e = anim::check_clip(a->clip_storage[i], node_count, morph_slots, &bad);
-        if (e != anim::DataError::ok)
-            return load_failure(
-                e == anim::DataError::non_finite_value || e == anim::DataError::times_not_increasing
-                    ? LoadError::bad_value
-                    : LoadError::out_of_range,
-                "CLIP: clip %u '%s' channel %u: %s", i, a->clip_storage[i].name, bad,
-                anim::data_error_name(e));
-    }
-    return {};
-}
-
-// CLIP section: validates the records, then decodes every channel's 16-bit codes into one
-// float pool allocated here, at load, so sampling reads plain floats.
-Status parse_clips(Reader r, uint32_t node_count, uint32_t morph_slots, Asset* a) {
-    ClipSection c;
-    Status st = read_clip_section(r, &c);
-    uint64_t value_total = 0;
-    if (st.ok()) st = check_channel_records(c, &value_total);
-    if (!st.ok()) return st;
-    a->clip_values.reset(new (std::nothrow) float[size_t(value_total) + 1]);
-    a->channel_storage.reset(new (std::nothrow) anim::Channel[c.channel_count + 1]);
-    a->clip_storage.reset(new (std::nothrow) anim::Clip[c.clip_count + 1]);
-    if (!a->clip_values || !a->channel_storage || !a->clip_storage)
-        return load_failure(LoadError::out_of_memory, "CLIP: out of memory");
-    decode_channels(c, a);
-    st = build_clips(c, node_count, morph_slots, a);
-    if (!st.ok()) return st;
-    a->clip_count = c.clip_count;
-    a->clips = a->clip_storage.get();
-    return {};
+    return check_weights(s->weights, vertex_count);
 }
 
 // MRPH section: default weight per slot, target records and their delta pool.
-Status parse_morph(Reader r, uint32_t vertex_count, Asset* a) {
+Status parse_morph(Reader r, uint32_t vertex_count, DecodeBudget* budget, Asset* a) {
     const uint32_t slots = r.u32(), target_count = r.u32(), delta_count = r.u32();
+    Status st = check_limit("MRPH", "target count", target_count, limits::kMaxMorphTargets);
+    if (st.ok()) st = check_limit("MRPH", "slot count", slots, limits::kMaxMorphSlots);
+    if (!st.ok()) return st;
     const float* defaults = r.take<float>(slots);
     const format::MorphTargetRecord* records = r.take<format::MorphTargetRecord>(target_count);
     const float* deltas = r.take<float>(delta_count);
@@ -239,6 +155,8 @@ Status parse_morph(Reader r, uint32_t vertex_count, Asset* a) {
                             target_count);
     if (!all_finite(deltas, delta_count))
         return load_failure(LoadError::bad_value, "MRPH: non-finite delta");
+    st = charge(budget, (uint64_t(target_count) + 1) * sizeof(anim::MorphTarget), "MRPH");
+    if (!st.ok()) return st;
     a->morph_target_storage.reset(new (std::nothrow) anim::MorphTarget[target_count + 1]);
     if (!a->morph_target_storage)
         return load_failure(LoadError::out_of_memory, "MRPH: out of memory");
@@ -261,95 +179,6 @@ Status parse_morph(Reader r, uint32_t vertex_count, Asset* a) {
     return {};
 }
 
-// One pass over the point stream (thesis §4.5 fields, coded as in point_codec.h). With
-// out == nullptr it only counts neighbours so the caller can size the arrays.
-Status decode_point_stream(codec::BitReader r, uint32_t point_count, float radius_max,
-                           uint32_t triangle_count, uint32_t* host, PointsView* out,
-                           uint32_t* neighbour_total) {
-    uint32_t total = 0, list[codec::kMaxNeighbours];
-    const float bary_scale = 1.0f / float((1u << codec::kBaryBits) - 1);
-    for (uint32_t i = 0; i < point_count; ++i) {
-        uint32_t u = r.bits(codec::kBaryBits), v = r.bits(codec::kBaryBits);
-        uint32_t q = r.bits(codec::kRadiusBits), n = r.bits(codec::kCountBits);
-        const int k = codec::neighbour_order(i);
-        for (uint32_t j = 0; j < n && r.ok; ++j) {
-            int64_t index =
-                j == 0 ? int64_t(i) - r.zigzag(k) : int64_t(list[j - 1]) - 1 - r.golomb(k);
-            if (index < 0 || index >= int64_t(point_count))
-                return load_failure(LoadError::out_of_range,
-                                    "PNTQ: point %u neighbour %lld out of range", i,
-                                    static_cast<long long>(index));
-            list[j] = uint32_t(index);
-        }
-        const int32_t reference = codec::host_reference(i, list, n);
-        const uint32_t base = reference >= 0 ? host[reference] : i > 0 ? host[i - 1] : 0;
-        host[i] = base + uint32_t(r.zigzag(reference >= 0 ? codec::kPredictedHostOrder
-                                                          : codec::host_order(triangle_count)));
-        if (!r.ok) break;
-        if (host[i] >= triangle_count || u + v > (1u << codec::kBaryBits) - 1)
-            return load_failure(LoadError::out_of_range,
-                                "PNTQ: point %u host triangle %u (of %u) or barycentrics invalid",
-                                i, host[i], triangle_count);
-        if (out) {
-            for (uint32_t j = 0; j < n; ++j)
-                const_cast<uint32_t*>(out->neighbours)[total + j] = list[j];
-            const_cast<float*>(out->bary_u)[i] = float(u) * bary_scale;
-            const_cast<float*>(out->bary_v)[i] = float(v) * bary_scale;
-            const_cast<float*>(out->radius)[i] =
-                q == codec::kRadiusZero
-                    ? 0.0f
-                    : radius_max * std::exp2(-float(q) / codec::kRadiusStepsPerOctave);
-            const_cast<uint32_t*>(out->neighbour_offsets)[i + 1] = total + n;
-        }
-        total += n;
-    }
-    if (!r.ok) return load_failure(LoadError::out_of_range, "PNTQ: stream ends early");
-    *neighbour_total = total;
-    return {};
-}
-
-Status parse_point_stream(Reader r, uint32_t triangle_count, Asset* a) {
-    uint32_t point_count = r.u32();
-    const float* radius_max = r.take<float>(1);
-    const uint64_t* bit_count = r.take<uint64_t>(1);
-    if (!r.ok || !std::isfinite(*radius_max) || *bit_count > uint64_t(r.size - r.at) * 8)
-        return load_failure(LoadError::malformed_section, "PNTQ: header does not fit the section");
-    const size_t bytes = size_t((*bit_count + 7) / 8);
-    codec::BitReader bits{r.data + r.at, size_t(*bit_count)};
-    if (r.at + bytes != r.size)
-        return load_failure(LoadError::malformed_section, "PNTQ: %llu bits but %zu bytes follow",
-                            static_cast<unsigned long long>(*bit_count), r.size - r.at);
-    uint32_t total = 0;
-    // Hosts are decoded in the first pass (later hosts are predicted from earlier ones);
-    // the second pass fills the other arrays once the neighbour count is known.
-    a->point_storage.reset(new (std::nothrow) uint32_t[size_t(point_count) + 1]);
-    if (!a->point_storage) return load_failure(LoadError::out_of_memory, "PNTQ: out of memory");
-    Status st = decode_point_stream(bits, point_count, *radius_max, triangle_count,
-                                    a->point_storage.get(), nullptr, &total);
-    if (!st.ok()) return st;
-    // host (kept from the first pass), u, v, radius (one word each per point), offsets
-    // (P + 1), neighbours.
-    const size_t words = size_t(point_count) * 5 + 1 + total;
-    std::unique_ptr<uint32_t[]> storage(new (std::nothrow) uint32_t[words]);
-    if (!storage) return load_failure(LoadError::out_of_memory, "PNTQ: out of memory");
-    std::memcpy(storage.get(), a->point_storage.get(), size_t(point_count) * 4);
-    a->point_storage = std::move(storage);
-    uint32_t* w = a->point_storage.get();
-    PointsView& p = a->points;
-    p.point_count = point_count;
-    p.host_triangle = w;
-    p.bary_u = reinterpret_cast<const float*>(w + point_count);
-    p.bary_v = reinterpret_cast<const float*>(w + size_t(point_count) * 2);
-    p.radius = reinterpret_cast<const float*>(w + size_t(point_count) * 3);
-    p.neighbour_offsets = w + size_t(point_count) * 4;
-    p.neighbours = w + size_t(point_count) * 5 + 1;
-    p.neighbour_count = total;
-    w[size_t(point_count) * 4] = 0;
-    // The same bytes passed the first pass, so this one cannot fail; its status is returned
-    // all the same rather than assumed.
-    return decode_point_stream(bits, point_count, *radius_max, triangle_count, w, &p, &total);
-}
-
 Status parse_edges(Reader r, const MeshView& m, EdgesView* e) {
     e->edge_count = r.u32();
     e->edges = r.take<uint32_t>(size_t(e->edge_count) * 4);
@@ -369,7 +198,7 @@ Status parse_edges(Reader r, const MeshView& m, EdgesView* e) {
 
 // SIDE section: runs of double-sided triangles, expanded into one flag per triangle (and,
 // with an EDGE section, one per edge for the boundary rims) in storage allocated here.
-Status parse_sides(Reader r, const MeshView& m, Asset* a) {
+Status parse_sides(Reader r, const MeshView& m, DecodeBudget* budget, Asset* a) {
     SidesView& s = a->sides;
     s.run_count = r.u32();
     s.runs = r.take<uint32_t>(size_t(s.run_count) * 2);
@@ -392,6 +221,8 @@ Status parse_sides(Reader r, const MeshView& m, Asset* a) {
     s.triangle_count = uint32_t(total);
     if (total == 0) return {};
     const size_t bytes = size_t(m.triangle_count) + a->edges.edge_count;
+    const Status st = charge(budget, bytes, "SIDE");
+    if (!st.ok()) return st;
     a->side_storage.reset(new (std::nothrow) uint8_t[bytes]);
     if (!a->side_storage) return load_failure(LoadError::out_of_memory, "SIDE: out of memory");
     uint8_t* flags = a->side_storage.get();
@@ -447,7 +278,7 @@ const format::SectionEntry* find_section(const format::SectionEntry* table, uint
     return nullptr;
 }
 
-Status parse(const uint8_t* bytes, size_t size, Asset* a) {
+Status parse(const uint8_t* bytes, size_t size, DecodeBudget* budget, Asset* a) {
     if (size < sizeof(format::FileHeader) || std::memcmp(bytes, format::kMagic, 4) != 0)
         return load_failure(LoadError::bad_magic, "not a .stip asset (bad magic)");
     format::FileHeader h;
@@ -463,7 +294,7 @@ Status parse(const uint8_t* bytes, size_t size, Asset* a) {
     if (h.file_size != size)
         return load_failure(LoadError::truncated, "asset is %zu bytes but its header says %llu",
                             size, static_cast<unsigned long long>(h.file_size));
-    if (h.section_count > 64 ||
+    if (h.section_count > limits::kMaxSections ||
         sizeof(format::FileHeader) + h.section_count * sizeof(format::SectionEntry) > size)
         return load_failure(LoadError::truncated,
                             "section table (%u entries) does not fit the file", h.section_count);
@@ -506,41 +337,82 @@ Status parse(const uint8_t* bytes, size_t size, Asset* a) {
         a->skinned = true;
         st = parse_skin(reader(sec[1]), a->mesh.vertex_count, &a->skin);
     }
-    if (st.ok() && sec[5]) st = parse_morph(reader(sec[5]), a->mesh.vertex_count, a);
+    if (st.ok() && sec[5]) st = parse_morph(reader(sec[5]), a->mesh.vertex_count, budget, a);
     if (st.ok() && sec[2])
-        st = parse_clips(reader(sec[2]), a->skin.skeleton.node_count, a->morph.weight_count, a);
-    if (st.ok()) st = parse_point_stream(reader(sec[3]), a->mesh.triangle_count, a);
+        st = detail::parse_clips(reader(sec[2]), a->skin.skeleton.node_count, a->morph.weight_count,
+                                 budget, a);
+    if (st.ok()) st = detail::parse_point_stream(reader(sec[3]), a->mesh.triangle_count, budget, a);
     if (st.ok() && sec[4]) st = parse_edges(reader(sec[4]), a->mesh, &a->edges);
-    if (st.ok() && sec[kSectionSides]) st = parse_sides(reader(sec[kSectionSides]), a->mesh, a);
+    if (st.ok() && sec[kSectionSides])
+        st = parse_sides(reader(sec[kSectionSides]), a->mesh, budget, a);
     if (st.ok() && sec[kSectionBounds]) st = parse_bounds(reader(sec[kSectionBounds]), a);
+    return st;
+}
+
+// The file's bytes are in out->storage: validates and decodes them.
+Status parse_stored(size_t size, const LoadOptions& options, Asset* out) {
+    out->file_size = size;
+    DecodeBudget budget;
+    budget.limit = decoded_size_limit(size, options);
+    Status st = parse(out->storage.get(), size, &budget, out);
+    if (!st.ok()) *out = Asset();
     return st;
 }
 
 }  // namespace
 
-Status load_asset_memory(const void* data, size_t size, Asset* out) {
+uint64_t decoded_size_limit(size_t file_size, const LoadOptions& options) {
+    if (options.max_decoded_bytes != 0) return options.max_decoded_bytes;
+    return uint64_t(file_size) * limits::kDecodedPerFileByte + limits::kDecodedFloorBytes;
+}
+
+Status load_asset_memory(const void* data, size_t size, Asset* out, const LoadOptions& options) {
+    if (!out) return load_failure(LoadError::invalid_argument, "no asset to load into");
     *out = Asset();
+    if (!data || size == 0)
+        return load_failure(LoadError::invalid_argument, "no asset bytes (data %s, size %zu)",
+                            data ? "given" : "NULL", size);
     // 16-byte aligned copy so every typed view is aligned.
     out->storage.reset(new (std::nothrow) uint8_t[size + 16]);
     if (!out->storage)
         return load_failure(LoadError::out_of_memory, "out of memory for a %zu-byte asset", size);
     std::memcpy(out->storage.get(), data, size);
-    out->file_size = size;
-    Status st = parse(out->storage.get(), size, out);
-    if (!st.ok()) *out = Asset();
-    return st;
+    return parse_stored(size, options, out);
 }
 
-Status load_asset_file(const char* path, Asset* out) {
+Status load_asset_file(const char* path, Asset* out, const LoadOptions& options) {
+    if (!out || !path)
+        return load_failure(LoadError::invalid_argument, "no %s",
+                            out ? "path" : "asset to load into");
     *out = Asset();
+    // Only regular files: a directory "opens" and reports a size of 2^63 - 1, and a device
+    // such as /dev/zero never ends.
+    std::error_code ec;
+    const std::filesystem::file_status st = std::filesystem::status(path, ec);
+    if (ec)
+        return load_failure(LoadError::io_error, "cannot open '%s': %s", path,
+                            std::strerror(ec.value()));
+    if (std::filesystem::is_directory(st))
+        return load_failure(LoadError::io_error, "'%s' is a directory", path);
+    if (!std::filesystem::is_regular_file(st))
+        return load_failure(LoadError::io_error, "'%s' is not a regular file", path);
     FILE* f = std::fopen(path, "rb");
-    if (!f) return load_failure(LoadError::io_error, "cannot open '%s'", path);
+    if (!f)
+        return load_failure(LoadError::io_error, "cannot open '%s': %s", path,
+                            std::strerror(errno));
     std::fseek(f, 0, SEEK_END);
     long len = std::ftell(f);
     std::fseek(f, 0, SEEK_SET);
     if (len < 0) {
         std::fclose(f);
-        return load_failure(LoadError::io_error, "cannot read '%s'", path);
+        return load_failure(LoadError::io_error, "cannot read '%s': %s", path,
+                            std::strerror(errno));
+    }
+    if (uint64_t(len) > limits::kMaxAssetFileBytes) {
+        std::fclose(f);
+        return load_failure(LoadError::count_over_limit,
+                            "'%s' is %lld bytes, over the limit of %llu", path, (long long)len,
+                            (unsigned long long)limits::kMaxAssetFileBytes);
     }
     size_t size = size_t(len);
     out->storage.reset(new (std::nothrow) uint8_t[size + 16]);
@@ -551,11 +423,11 @@ Status load_asset_file(const char* path, Asset* out) {
     }
     size_t got = std::fread(out->storage.get(), 1, size, f);
     std::fclose(f);
-    if (got != size) return load_failure(LoadError::io_error, "short read on '%s'", path);
-    out->file_size = size;
-    Status st = parse(out->storage.get(), size, out);
-    if (!st.ok()) *out = Asset();
-    return st;
+    if (got != size) {
+        *out = Asset();
+        return load_failure(LoadError::io_error, "short read on '%s'", path);
+    }
+    return parse_stored(size, options, out);
 }
 
 int find_clip(const Asset& asset, const char* name) {

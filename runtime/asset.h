@@ -107,11 +107,29 @@ struct Asset {
     std::unique_ptr<uint8_t[]> side_storage;  // triangle flags, then edge flags
 };
 
+// How much a load may take. The loader computes each section's decoded size from counts it
+// has checked against the section's bytes and charges it before allocating; an asset whose
+// total would pass the limit fails with LoadError::decoded_size_limit (clip channels may
+// share key data, so a small file can ask for gigabytes).
+struct LoadOptions {
+    // Bytes the decoded sections may take beyond the file's own copy. 0: the default,
+    // limits::kDecodedPerFileByte times the file size plus limits::kDecodedFloorBytes
+    // (runtime/asset_limits.h). A non-zero cap replaces the default, lower or higher.
+    uint64_t max_decoded_bytes = 0;
+};
+
+// The decoded-size limit a load of `file_size` bytes runs under with `options`.
+uint64_t decoded_size_limit(size_t file_size, const LoadOptions& options);
+
 // Reads and validates a whole asset. On failure `out` is left empty and the Status says
-// which check failed (Status::error); out-of-memory is StatusCode::out_of_memory.
-[[nodiscard]] Status load_asset_file(const char* path, Asset* out);
-// Validates `size` bytes already in memory; copies them into out->storage.
-[[nodiscard]] Status load_asset_memory(const void* data, size_t size, Asset* out);
+// which check failed (Status::error, docs/errors.md); out-of-memory is
+// StatusCode::out_of_memory, a NULL path or out LoadError::invalid_argument.
+[[nodiscard]] Status load_asset_file(const char* path, Asset* out,
+                                     const LoadOptions& options = LoadOptions());
+// Validates `size` bytes already in memory; copies them into out->storage. NULL data or
+// size 0: LoadError::invalid_argument.
+[[nodiscard]] Status load_asset_memory(const void* data, size_t size, Asset* out,
+                                       const LoadOptions& options = LoadOptions());
 
 // Section name of a kSection* index ("MESH", ..., "SIDE").
 const char* section_name(int section);

@@ -26,10 +26,26 @@ Status make_status(StatusCode code, const char* format, ...) {
 }
 
 Status load_failure(LoadError error, const char* format, ...) {
+    char raw[sizeof(Status::message) * 2];
     va_list args;
     va_start(args, format);
-    Status s = vstatus(status_code_of(error), error, format, args);
+    std::vsnprintf(raw, sizeof(raw), format, args);
     va_end(args);
+    Status s;
+    s.code = status_code_of(error);
+    s.error = error;
+    // Printable ASCII only; everything else as \xNN (truncated at a whole escape).
+    size_t at = 0;
+    for (const char* c = raw; *c != '\0'; ++c) {
+        const unsigned char b = static_cast<unsigned char>(*c);
+        const bool plain = b >= 0x20 && b < 0x7F;
+        if (at + (plain ? 1 : 4) >= sizeof(s.message)) break;
+        if (plain)
+            s.message[at++] = char(b);
+        else
+            at += size_t(std::snprintf(s.message + at, 5, "\\x%02x", b));
+    }
+    s.message[at] = '\0';
     return s;
 }
 
@@ -43,6 +59,8 @@ StatusCode status_code_of(LoadError error) {
             return StatusCode::unsupported_version;
         case LoadError::out_of_memory:
             return StatusCode::out_of_memory;
+        case LoadError::invalid_argument:
+            return StatusCode::invalid_argument;
         default:
             return StatusCode::bad_asset;
     }
@@ -94,6 +112,22 @@ const char* load_error_name(LoadError error) {
             return "bad_value";
         case LoadError::out_of_memory:
             return "out_of_memory";
+        case LoadError::invalid_argument:
+            return "invalid_argument";
+        case LoadError::count_over_limit:
+            return "count_over_limit";
+        case LoadError::count_exceeds_data:
+            return "count_exceeds_data";
+        case LoadError::decoded_size_limit:
+            return "decoded_size_limit";
+        case LoadError::zero_count:
+            return "zero_count";
+        case LoadError::bad_normal:
+            return "bad_normal";
+        case LoadError::bad_skin_weight:
+            return "bad_skin_weight";
+        case LoadError::bad_radius:
+            return "bad_radius";
     }
     return "unknown";
 }

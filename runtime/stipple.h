@@ -68,8 +68,26 @@ typedef struct stipple_player_desc {
 /* One line describing the last failure on this thread ("" if none). */
 const char* stipple_last_error(void);
 
+/* Loading validates every byte before use and fails with STIPPLE_ERROR_BAD_ASSET, naming the
+ * check in stipple_last_error() (docs/errors.md lists them all), on a truncated, corrupted or
+ * hostile asset. NULL path, data or out, or size 0: STIPPLE_ERROR_INVALID_ARGUMENT. */
 stipple_result stipple_asset_load_file(const char* path, stipple_asset** out);
 stipple_result stipple_asset_load_memory(const void* data, size_t size, stipple_asset** out);
+
+/* Load settings; zero-initialise, zero means default. */
+typedef struct stipple_load_desc {
+    /* Memory the load may take beyond the file's own copy for decoded sections (clip key
+     * values, point arrays). An asset that would need more fails with
+     * STIPPLE_ERROR_BAD_ASSET before the memory is taken. 0: 16 times the file size plus
+     * 1 MiB (bundled assets need at most about 4 times; see docs/errors.md). */
+    uint64_t max_decoded_bytes;
+} stipple_load_desc;
+
+/* As stipple_asset_load_file / _memory, with load settings; desc may be NULL (defaults). */
+stipple_result stipple_asset_load_file_ex(const char* path, const stipple_load_desc* desc,
+                                          stipple_asset** out);
+stipple_result stipple_asset_load_memory_ex(const void* data, size_t size,
+                                            const stipple_load_desc* desc, stipple_asset** out);
 void stipple_asset_destroy(stipple_asset* asset);
 uint32_t stipple_asset_point_count(const stipple_asset* asset);
 uint32_t stipple_asset_clip_count(const stipple_asset* asset);

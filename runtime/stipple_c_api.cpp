@@ -56,6 +56,13 @@ stipple_result load(stipple_asset** out, Load&& load_into) {
     return STIPPLE_OK;
 }
 
+// A load description as LoadOptions; NULL: every default.
+stipple::LoadOptions load_options_of(const stipple_load_desc* desc) {
+    stipple::LoadOptions options;
+    if (desc) options.max_decoded_bytes = desc->max_decoded_bytes;
+    return options;
+}
+
 // The description as frame settings: a zero field keeps FrameConfig's default (the table in
 // runtime/frame_config.h); resolve_frame_config then fills zero sizes and checks limits.
 stipple::FrameConfig frame_config_of(const stipple_player_desc& d) {
@@ -111,13 +118,26 @@ const char* stipple_last_error(void) {
 }
 
 stipple_result stipple_asset_load_file(const char* path, stipple_asset** out) {
-    if (!path) return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "path is NULL");
-    return load(out, [&](stipple::Asset* a) { return stipple::load_asset_file(path, a); });
+    return stipple_asset_load_file_ex(path, nullptr, out);
 }
 
 stipple_result stipple_asset_load_memory(const void* data, size_t size, stipple_asset** out) {
+    return stipple_asset_load_memory_ex(data, size, nullptr, out);
+}
+
+stipple_result stipple_asset_load_file_ex(const char* path, const stipple_load_desc* desc,
+                                          stipple_asset** out) {
+    if (!path) return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "path is NULL");
+    const stipple::LoadOptions options = load_options_of(desc);
+    return load(out, [&](stipple::Asset* a) { return stipple::load_asset_file(path, a, options); });
+}
+
+stipple_result stipple_asset_load_memory_ex(const void* data, size_t size,
+                                            const stipple_load_desc* desc, stipple_asset** out) {
     if (!data) return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "data is NULL");
-    return load(out, [&](stipple::Asset* a) { return stipple::load_asset_memory(data, size, a); });
+    const stipple::LoadOptions options = load_options_of(desc);
+    return load(
+        out, [&](stipple::Asset* a) { return stipple::load_asset_memory(data, size, a, options); });
 }
 
 void stipple_asset_destroy(stipple_asset* asset) {

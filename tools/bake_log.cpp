@@ -30,9 +30,12 @@ std::vector<std::string> LibraryLog::summary() const {
     std::vector<std::string> out;
     for (const auto& c : counted) {
         const std::string n = std::to_string(c.second);
-        if (c.first.find("add_face: complex vertex") != std::string::npos)
-            out.push_back(n + (c.second == 1 ? " face" : " faces") +
-                          " hit a complex vertex (OpenMesh add_face); their corners were split");
+        const bool vertex = c.first.find("add_face: complex vertex") != std::string::npos;
+        const bool edge = c.first.find("add_face: complex edge") != std::string::npos;
+        if (vertex || edge)
+            out.push_back(n + (c.second == 1 ? " face" : " faces") + " hit a complex " +
+                          (vertex ? "vertex" : "edge") +
+                          " (OpenMesh add_face); their corners were split");
         else
             out.push_back(c.first + (c.second == 1 ? "" : " (" + n + " times)"));
     }

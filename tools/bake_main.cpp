@@ -1,13 +1,16 @@
 // stipple-bake: glTF / OBJ / PLY / STL -> .stip asset (mesh, skin, clips, point hierarchy).
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
 
 #include "bake/asset_writer.h"
+#include "bake/atomic_file.h"
 #include "bake/point_hierarchy.h"
 #include "bake/scene_import.h"
 #include "bake/scene_orientation.h"
@@ -103,6 +106,32 @@ Options parse(int argc, char** argv) {
     return o;
 }
 
+// -o naming the input (the same path, or another name for the same file: a hard link, a
+// symlink, "./x") would replace the model with the asset: refused before anything is read
+// or written.
+void refuse_output_over_input(const Options& o) {
+    struct stat in = {}, out = {};
+    const bool same = o.output == o.input ||
+                      (::stat(o.input.c_str(), &in) == 0 && ::stat(o.output.c_str(), &out) == 0 &&
+                       in.st_dev == out.st_dev && in.st_ino == out.st_ino);
+    if (same) die("output '" + o.output + "' is the input file; pass another -o");
+}
+
+// SIGINT/SIGTERM remove the temp file an asset write holds, then end the process as the
+// signal would have. SIGXFSZ (a write past `ulimit -f`) is ignored, so the write fails with
+// EFBIG, the error is reported and the temp file removed.
+void on_fatal_signal(int sig) {
+    stipple::bake::remove_pending_temp_file();
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+}
+
+void install_signal_handlers() {
+    std::signal(SIGINT, on_fatal_signal);
+    std::signal(SIGTERM, on_fatal_signal);
+    std::signal(SIGXFSZ, SIG_IGN);
+}
+
 // Progress bar on stderr, only when stderr is a terminal (a redirected log gets no '\r'
 // frames) and not --quiet: silent for the first second (most bakes end sooner), then one
 // line rewritten in place with the phase, a bar, the phase's percentage and the time.
@@ -196,12 +225,17 @@ int main(int argc, char** argv) {
     const uint16_t probe = 1;
     if (*reinterpret_cast<const uint8_t*>(&probe) != 1) die("big-endian hosts are not supported");
     const Options o = parse(argc, argv);
+    refuse_output_over_input(o);
+    install_signal_handlers();
     const auto t0 = std::chrono::steady_clock::now();
 
     Progress progress;
     progress.enabled = !o.quiet && isatty(fileno(stderr));
     if (const char* delay = std::getenv("STIPPLE_PROGRESS_DELAY"))
         progress.delay = std::atof(delay);
+    // What libraries print on std::cerr during the whole bake (OpenMesh's add_face lines),
+    // summarized below, one line per distinct message.
+    stipple::tools::LibraryLog log;
     const RawScene scene = import(o);
     on_progress("import", 1, &progress);
 
@@ -214,7 +248,6 @@ int main(int argc, char** argv) {
     config.progress_user = &progress;
     PointHierarchy points;
     HierarchyStats stats;
-    stipple::tools::LibraryLog log;  // OpenMesh's complex-vertex lines, summarized below
     const BakeError built = build_point_hierarchy(scene, config, &points, &stats);
     log.stop();
     progress.finish();

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bake/asset_writer.h"
+#include "bake/gltf_file_access.h"
 #include "bake/point_hierarchy.h"
 #include "bake/scene_import.h"
 #include "tests/common/fixtures.h"
@@ -56,7 +57,7 @@ TEST(BakeErrors, ImportersSayWhatFailed) {
     RawScene s;
     BakeError e = import_scene(dir.file("missing.glb"), &s);
     EXPECT_EQ(e.code, BakeErrorCode::io) << e.message;
-    EXPECT_EQ(e.message, dir.file("missing.glb") + ": cannot open file");
+    EXPECT_EQ(e.message, dir.file("missing.glb") + ": cannot open file: No such file or directory");
     e = import_scene(dir.file("missing.stl"), &s);
     EXPECT_EQ(e.code, BakeErrorCode::io) << e.message;
     e = import_scene(dir.file("mesh.fbx"), &s);
@@ -109,6 +110,22 @@ TEST(BakeErrors, HierarchyAndWriterSayWhatFailed) {
     e = write_asset(dir.file("no_such_dir/out.stip"), std::vector<uint8_t>(4, 0));
     EXPECT_EQ(e.code, BakeErrorCode::io);
     EXPECT_NE(e.message.find("cannot open"), std::string::npos) << e.message;
+}
+
+// A data URI over the cap is refused from its length in the JSON text, before decoding.
+TEST(BakeErrors, DataUrisOverTheCapAreRefused) {
+    const std::string json = R"({"buffers": [{"uri": "data:application/octet-stream;base64,)" +
+                             std::string(64, 'A') + R"(", "byteLength": 48}]})";
+    const auto* text = reinterpret_cast<const unsigned char*>(json.data());
+    EXPECT_TRUE(gltf::check_data_uris(text, json.size(), 200).ok());
+    const BakeError e = gltf::check_data_uris(text, json.size(), 64);
+    EXPECT_EQ(e.code, BakeErrorCode::unsupported);
+    EXPECT_EQ(e.message.find("a data URI of 101 bytes is over the 64 bytes cap"), 0u) << e.message;
+    // An unterminated one counts to the end of the text.
+    const std::string cut = json.substr(0, json.find("AAAA") + 10);
+    EXPECT_FALSE(
+        gltf::check_data_uris(reinterpret_cast<const unsigned char*>(cut.data()), cut.size(), 40)
+            .ok());
 }
 
 }  // namespace

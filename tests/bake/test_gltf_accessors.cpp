@@ -272,6 +272,11 @@ TEST(GltfAccessors, RejectsMalformedSparseData) {
     EXPECT_EQ(e.code, BakeErrorCode::malformed_input);
     EXPECT_EQ(e.message, "accessor 0: sparse count 4 out of range (accessor count 3)");
 
+    // tinygltf keeps a JSON count of 2^31 as INT_MIN; the message shows 2^31, not a negative.
+    sparse.count = int(uint32_t(1) << 31);
+    e = read_accessor(b.model, acc, TINYGLTF_TYPE_SCALAR, kF32, &out);
+    EXPECT_EQ(e.message, "accessor 0: sparse count 2147483648 out of range (accessor count 3)");
+
     sparse.count = 2;
     sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
     e = read_accessor(b.model, acc, TINYGLTF_TYPE_SCALAR, kF32, &out);
