@@ -6,7 +6,9 @@
 #include <cassert>
 #include <cctype>
 #include <cmath>
+#include <fstream>
 #include <iostream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <new>
@@ -96,12 +98,85 @@ void add_reader_warnings(const std::vector<std::string>& messages, RawScene* sce
     }
 }
 
+std::string lowercase_extension(const std::string& path);
+
+bool ply_type(const std::string& t) {
+    static const char* const kTypes[] = {"char",  "uchar",  "short",   "ushort", "int",   "uint",
+                                         "float", "double", "int8",    "uint8",  "int16", "uint16",
+                                         "int32", "uint32", "float32", "float64"};
+    return std::find(std::begin(kTypes), std::end(kTypes), t) != std::end(kTypes);
+}
+
+// OpenMesh 9's PLY header reader loops forever (its string stream growing) on a header it
+// cannot tokenise (no end_header, or a keyword or count its stream fails on) and crashes on
+// a property line before any element line (both found by tests/fuzz/fuzz_mesh_import.cpp). So a
+// .ply reaches it only with a header of the PLY grammar: "ply", then format (version 1.0) / comment
+// / obj_info / element NAME COUNT / property TYPE NAME / property list TYPE TYPE NAME lines, then
+// end_header, within the first 64 KiB.
+BakeError check_ply_header(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    size_t read = 0;
+    bool element = false;  // a property line belongs to the element before it
+    for (int n = 1; read < (64u << 10) && std::getline(in, line); ++n) {
+        read += line.size() + 1;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        std::istringstream words(line);
+        std::string key, a, b, c, d;
+        words >> key >> a >> b >> c >> d;
+        bool ok = false;
+        if (n == 1) {
+            ok = key == "ply" && a.empty();
+        } else if (key == "end_header") {
+            return BakeError();
+        } else if (key == "comment" || key == "obj_info") {
+            ok = true;
+        } else if (key == "format") {
+            ok = (a == "ascii" || a == "binary_little_endian" || a == "binary_big_endian") &&
+                 b == "1.0" && c.empty();
+        } else if (key == "element") {
+            ok = element =
+                !a.empty() && !b.empty() && b.size() <= 10 && c.empty() &&
+                std::all_of(b.begin(), b.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+        } else if (key == "property") {
+            ok = element && (a == "list" ? ply_type(b) && ply_type(c) && !d.empty()
+                                         : ply_type(a) && !b.empty() && c.empty());
+        }
+        if (!ok) return malformed_input("PLY header line " + std::to_string(n) + " is not valid");
+    }
+    return malformed_input("PLY header has no end_header line");
+}
+
+// OpenMesh 9's OBJ reader asserts (aborting the bake) on a face corner without a vertex
+// index ("f /1 ..."; found by tests/fuzz/fuzz_mesh_import.cpp): refuse those first.
+BakeError check_obj_faces(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    for (uint64_t n = 1; std::getline(in, line); ++n) {
+        if (line.size() < 2 || line[0] != 'f' || !std::isspace(static_cast<unsigned char>(line[1])))
+            continue;
+        std::istringstream words(line.substr(1));
+        std::string corner;
+        while (words >> corner) {
+            if (corner[0] == '/')
+                return malformed_input("OBJ line " + std::to_string(n) +
+                                       ": a face corner has no vertex index");
+        }
+    }
+    return BakeError();
+}
+
 BakeError read_static_mesh(const std::string& path, RawScene* scene) {
     // Only a regular file under the cap reaches OpenMesh's readers (a directory or
     // /dev/zero would otherwise be read until memory runs out).
     uint64_t size = 0;
     const BakeError checked = check_input_file(path, kMaxModelFileBytes, &size);
     if (!checked.ok()) return checked;
+    const std::string ext = lowercase_extension(path);
+    const BakeError syntax = ext == ".ply"   ? check_ply_header(path)
+                             : ext == ".obj" ? check_obj_faces(path)
+                                             : BakeError();
+    if (!syntax.ok()) return syntax;
     OpenMesh::TriMesh_ArrayKernelT<> mesh;
     bool ok = false;
     std::vector<std::string> messages;

@@ -72,6 +72,9 @@ struct FrameConfig {
     // the baked hierarchy runs out (close-ups, stretch). 0 turns it off.
     uint32_t refinement_budget = kFrameSettings.refinement_budget.fallback;
     float dark_tone = kFrameSettings.dark_tone.fallback;  // darkest tone lighting asks for
+    // Debug: call glGetError after the depth, lines and dots passes and each readback, and
+    // record the errors in the renderer (pipeline_gl_errors). Off: no check costs a frame.
+    bool check_gl_errors = false;
 };
 
 // Writes `in` with defaults in its zero fields (see FrameConfig) to *out. Fails with

@@ -334,6 +334,7 @@ RendererConfig renderer_config(const Pipeline& p) {
     rc.max_lines = asset.edges.edge_count;
     rc.line_width = c.line_width;
     rc.depth_copy = c.depth_readback;
+    rc.check_errors = c.check_gl_errors;
     rc.indices = asset.mesh.indices;
     rc.triangle_count = asset.mesh.triangle_count;
     std::memcpy(rc.background, c.background, sizeof(rc.background));

@@ -99,6 +99,12 @@ inline uint32_t pipeline_point_count(const Pipeline& p) {
     return (p.asset ? p.asset->points.point_count : 0) + p.refined_count;
 }
 
+// GL errors the checks saw since pipeline_init (FrameConfig::check_gl_errors; always empty
+// without it): a count and the first error's pass and code (gl_error_name names it).
+inline const GlErrorLog& pipeline_gl_errors(const Pipeline& p) {
+    return p.renderer.gl_errors;
+}
+
 // Stable id of point i of the last frame: baked points keep their index; an extra point is
 // ((host triangle + 1) << 32) | its rank in the triangle's sequence, the same every frame.
 uint64_t pipeline_point_id(const Pipeline& p, uint32_t i);

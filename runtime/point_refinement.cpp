@@ -127,7 +127,8 @@ float hand_over(float ratio) {
 void visit(Traversal* s, const Cell& cell, uint64_t base, uint64_t stride, uint32_t start) {
     if (base > 0xFFFFFFFFull) return;
     const double count = cell_count(*s, cell) - s->phase;  // ranks k + phase <= count
-    if (double(base) > count) return;                      // nothing here the size rule could draw
+    // Nothing here the size rule could draw; NaN (a pose gone non-finite) draws nothing too.
+    if (!(count >= double(base))) return;
     const uint32_t own = pattern_points() - start;
     const double fit = std::floor((count - double(base)) / double(stride)) + 1.0;
     const uint32_t n = fit >= double(own) ? own : uint32_t(fit);
@@ -150,7 +151,7 @@ void visit(Traversal* s, const Cell& cell, uint64_t base, uint64_t stride, uint3
 void visit_roots(Traversal* s, const Cell& cell, uint32_t levels, uint64_t base, uint64_t stride) {
     if (levels == 0) return visit(s, cell, base, stride, 0);
     const double count = cell_count(*s, cell) - s->phase;
-    if (double(base) > count) return;
+    if (!(count >= double(base))) return;  // also NaN
     visit_roots(s, bisect(cell, s->to_2d, 0), levels - 1, base, stride * 2);
     visit_roots(s, bisect(cell, s->to_2d, 1), levels - 1, base + stride, stride * 2);
 }

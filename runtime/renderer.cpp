@@ -162,6 +162,21 @@ GLuint dynamic_buffer(const GlApi& gl, GLuint location, GLint components, size_t
     return b;
 }
 
+// With config.check_errors, reads every pending GL error flag (glGetError returns one per
+// call; at most a few are set at once) and records them against `pass`.
+void check_pass(Renderer* r, const char* pass) {
+    if (!r->config.check_errors) return;
+    for (int i = 0; i < 8; ++i) {
+        const GLenum e = r->gl.GetError();
+        if (e == GL_NO_ERROR) return;
+        if (r->gl_errors.count == 0) {
+            r->gl_errors.first_pass = pass;
+            r->gl_errors.first_error = e;
+        }
+        ++r->gl_errors.count;
+    }
+}
+
 // State shared by the passes that lay ink over the mesh pass: colour attachment only,
 // depth-tested against the (biased) mesh without writing depth, no blending.
 void begin_ink_pass(Renderer* r, GLuint program, GLint vp, GLint ink,
@@ -258,6 +273,25 @@ void create_buffers(Renderer* r) {
 
 }  // namespace
 
+const char* gl_error_name(GLenum error) {
+    switch (error) {
+        case GL_NO_ERROR:
+            return "GL_NO_ERROR";
+        case GL_INVALID_ENUM:
+            return "GL_INVALID_ENUM";
+        case GL_INVALID_VALUE:
+            return "GL_INVALID_VALUE";
+        case GL_INVALID_OPERATION:
+            return "GL_INVALID_OPERATION";
+        case GL_INVALID_FRAMEBUFFER_OPERATION:
+            return "GL_INVALID_FRAMEBUFFER_OPERATION";
+        case GL_OUT_OF_MEMORY:
+            return "GL_OUT_OF_MEMORY";
+        default:
+            return "GL_UNKNOWN_ERROR";
+    }
+}
+
 Status renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config) {
     *r = Renderer();
     r->gl = gl;
@@ -304,6 +338,7 @@ void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const flo
     gl.BindBuffer(GL_ARRAY_BUFFER, r->mesh_vbo);
     gl.BufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(vertex_count) * 12), positions);
     gl.DrawElements(GL_TRIANGLES, GLsizei(c.triangle_count * 3), GL_UNSIGNED_INT, nullptr);
+    check_pass(r, "depth");
 }
 
 void renderer_draw_points(Renderer* r, const glm::mat4& view_projection, const float* positions,
@@ -326,6 +361,7 @@ void renderer_draw_points(Renderer* r, const glm::mat4& view_projection, const f
     gl.BindVertexArray(0);
     gl.BindTexture(GL_TEXTURE_2D, 0);
     gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+    check_pass(r, "dots");
 }
 
 void renderer_draw_lines(Renderer* r, const glm::mat4& view_projection, const float* lines,
@@ -342,6 +378,7 @@ void renderer_draw_lines(Renderer* r, const glm::mat4& view_projection, const fl
     gl.BufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(line_count) * 24), lines);
     gl.DrawArrays(GL_LINES, 0, GLsizei(line_count * 2));
     gl.BindVertexArray(0);
+    check_pass(r, "lines");
 }
 
 void renderer_read_color(Renderer* r, uint8_t* rgba) {
@@ -350,6 +387,7 @@ void renderer_read_color(Renderer* r, uint8_t* rgba) {
     gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
     gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
     gl.ReadPixels(0, 0, r->config.width, r->config.height, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    check_pass(r, "readback");
 }
 
 void renderer_read_depth(Renderer* r, float* scratch, float* depth) {
@@ -362,6 +400,7 @@ void renderer_read_depth(Renderer* r, float* scratch, float* depth) {
     const size_t n = size_t(r->config.width) * size_t(r->config.height);
     for (size_t i = 0; i < n; ++i) depth[i] = scratch[i * 4];
     gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    check_pass(r, "depth readback");
 }
 
 void renderer_destroy(Renderer* r) {

@@ -34,7 +34,22 @@ struct RendererConfig {
     // Keep a float copy of the mesh pass's depth for renderer_read_depth (dot visibility
     // lists). Off by default: it costs a 4-byte-per-pixel clear and write every frame.
     bool depth_copy = false;
+    // Call glGetError after each pass (depth, lines, dots) and each readback and record what
+    // it reports in Renderer::gl_errors (FrameConfig::check_gl_errors). Off by default: each
+    // check is a driver round trip.
+    bool check_errors = false;
 };
+
+// GL errors seen by the checks (RendererConfig::check_errors) since renderer_init: how many,
+// and the first one (the pass it followed and its code). Filled without allocating.
+struct GlErrorLog {
+    uint32_t count = 0;
+    const char* first_pass = nullptr;  // "depth", "lines", "dots", "readback", "depth readback"
+    GLenum first_error = GL_NO_ERROR;
+};
+
+// The name of a glGetError code ("GL_INVALID_OPERATION"), or "GL_UNKNOWN_ERROR".
+const char* gl_error_name(GLenum error);
 
 struct Renderer {
     GlApi gl;
@@ -48,6 +63,7 @@ struct Renderer {
     GLuint point_vao = 0, point_pos_vbo = 0, point_size_vbo = 0;
     GLuint line_program = 0, line_vao = 0, line_vbo = 0;
     GLint line_vp = -1, line_ink = -1;
+    GlErrorLog gl_errors;  // filled only when config.check_errors
 };
 
 // Creates the framebuffer, shaders and buffers. Fails with gl_error (incomplete framebuffer,

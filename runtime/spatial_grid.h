@@ -2,6 +2,7 @@
 // the run-time refinement (refinement_order, point_triangulation). Built once with counting
 // sort: no allocation per cell, and none at all after build().
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <memory>
@@ -15,7 +16,18 @@ struct SpatialGrid {
     std::unique_ptr<uint32_t[]> items;  // point indices sorted by bucket
     const float* points = nullptr;      // 3 floats per point
 
-    glm::ivec3 at(const glm::vec3& p) const { return glm::ivec3(glm::floor(p / cell)); }
+    // Cell coordinates saturate at +-2^30 (NaN: 0): a far point or a tiny cell must not
+    // overflow the float-to-int conversion (undefined) nor near()'s loop counters.
+    static int coord(float v) {
+        constexpr float kLimit = 1073741824.0f;  // 2^30
+        const float f = std::floor(v);
+        if (f >= kLimit) return 1 << 30;
+        if (f > -kLimit) return int(f);
+        return f == f ? -(1 << 30) : 0;
+    }
+    glm::ivec3 at(const glm::vec3& p) const {
+        return glm::ivec3(coord(p.x / cell), coord(p.y / cell), coord(p.z / cell));
+    }
     uint32_t bucket(const glm::ivec3& c) const {
         return (uint32_t(c.x) * 73856093u ^ uint32_t(c.y) * 19349663u ^ uint32_t(c.z) * 83492791u) &
                mask;

@@ -62,6 +62,9 @@ typedef struct stipple_player_desc {
                                      point. */
     uint32_t background_rgb;      /* 0xRRGGBB; used only when background_set */
     int background_set;           /* 0: white paper (0xFFFFFF) */
+    int check_gl_errors;          /* 1: call glGetError after each pass (depth, lines, dots) and
+                                     each readback; stipple_player_gl_errors counts what it
+                                     reports. A debug aid: each check is a driver round trip */
     stipple_get_proc_fn get_proc_address; /* required */
 } stipple_player_desc;
 
@@ -116,6 +119,10 @@ void stipple_player_draw_blend(stipple_player* player, int clip, float time, int
 /* width * height * 4 bytes, bottom row first (GL order). */
 void stipple_player_read_rgba(stipple_player* player, uint8_t* rgba);
 uint32_t stipple_player_points_drawn(const stipple_player* player);
+/* GL errors reported since create when desc.check_gl_errors is 1 (always 0 otherwise). Any
+ * non-zero count is a bug in the player or a broken context; stipple-play --check-gl names
+ * the pass of the first one. */
+uint32_t stipple_player_gl_errors(const stipple_player* player);
 void stipple_player_destroy(stipple_player* player);
 
 #ifdef __cplusplus

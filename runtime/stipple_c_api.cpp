@@ -84,6 +84,7 @@ stipple::FrameConfig frame_config_of(const stipple_player_desc& d) {
     if (d.background_set)
         for (int k = 0; k < 3; ++k)
             c.background[k] = float((d.background_rgb >> (16 - 8 * k)) & 0xFF) / 255.0f;
+    c.check_gl_errors = d.check_gl_errors != 0;
     return c;
 }
 
@@ -107,6 +108,7 @@ void desc_of(const stipple::FrameConfig& c, stipple_player_desc* d) {
     for (int k = 0; k < 3; ++k)
         d->background_rgb |= uint32_t(std::lround(c.background[k] * 255.0f)) << (16 - 8 * k);
     d->background_set = 1;
+    d->check_gl_errors = c.check_gl_errors ? 1 : 0;
 }
 
 }  // namespace
@@ -221,6 +223,10 @@ void stipple_player_read_rgba(stipple_player* p, uint8_t* rgba) {
 
 uint32_t stipple_player_points_drawn(const stipple_player* p) {
     return p ? p->pipeline.points_drawn : 0;
+}
+
+uint32_t stipple_player_gl_errors(const stipple_player* p) {
+    return p ? stipple::pipeline_gl_errors(p->pipeline).count : 0;
 }
 
 void stipple_player_destroy(stipple_player* p) {

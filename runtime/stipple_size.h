@@ -43,7 +43,8 @@ struct InkTable {
     float ink[kSteps + 1];
     explicit InkTable(const SizeParams& params);
     float at(float n_dot_l) const {
-        const float x = glm::clamp(n_dot_l, 0.0f, 1.0f) * kSteps;
+        // Clamped to [0, 1]; NaN (a pose gone non-finite) reads as 0, not as an index.
+        const float x = (n_dot_l > 0.0f ? (n_dot_l < 1.0f ? n_dot_l : 1.0f) : 0.0f) * kSteps;
         const int i = glm::min(int(x), kSteps - 1);
         return ink[i] + (ink[i + 1] - ink[i]) * (x - float(i));
     }

@@ -70,6 +70,8 @@ const std::string kUsage =
     "                          zoom change; " +
     range(kLimits.zoom) +
     ")\n"
+    "  --zoom-period N         with --zoom-to: go Z -> Z2 -> Z every N frames, again and again\n"
+    "                          (default: once, Z -> Z2 over all frames)\n"
     "  --yaw DEG, --pitch DEG  camera orbit (default " +
     g(kDefaults.yaw_degrees) + ", " + g(kDefaults.pitch_degrees) +
     ": looking down -Z);\n                          yaw " + range(kLimits.yaw_degrees) +
@@ -104,6 +106,10 @@ const std::string kUsage =
     "  --no-png                do not write per-frame PNGs\n"
     "  --no-apng               do not write anim.png\n"
     "  --stats                 print a JSON object of counts and timings to stdout\n"
+    "  --check-gl              check glGetError after every pass and readback; a GL error\n"
+    "                          fails the run (exit 1) naming the pass; --stats counts them\n"
+    "  --rss-every N           every N frames append frame,rss_kb,ms_per_frame (resident\n"
+    "                          memory, mean frame time since the last row) to DIR/rss.csv\n"
     "  --backend egl|osmesa    force a context backend (default: EGL, then OSMesa)\n"
     "  -h, --help              this text\n";
 
@@ -118,7 +124,8 @@ struct Options {
     double zoom = kDefaults.zoom, yaw = kDefaults.yaw_degrees, pitch = kDefaults.pitch_degrees;
     double tone = kDefaults.constant_tone, point_size = kDefaults.max_point_size;
     double dark_tone = kDefaults.dark_tone;
-    double zoom_to = 0;  // > 0: zoom moves geometrically from `zoom` to this over the frames
+    double zoom_to = 0;    // > 0: zoom moves geometrically from `zoom` to this over the frames
+    long zoom_period = 0;  // > 0: ... and back, every zoom_period frames
     long refinement_budget = long(kDefaults.refinement_budget);
     int width = kDefaults.width, height = kDefaults.height;
     float background[3] = {kDefaults.background[0], kDefaults.background[1],
@@ -128,6 +135,8 @@ struct Options {
     bool relevance_update = kDefaults.relevance_update;
     bool dots_out = false, png = true, apng = true, stats = false;
     bool mask_out = false;
+    bool check_gl = false;
+    long rss_every = 0;  // > 0: DIR/rss.csv gets a row every rss_every frames
 };
 
 stipple::cli::Parser g_parser("stipple-play", kUsage.c_str());
@@ -171,6 +180,7 @@ void add_view_options(stipple::cli::Parser& p, Options& o) {
                 })
         .number("--zoom", kLimits.zoom.min, kLimits.zoom.max, &o.zoom)
         .number("--zoom-to", kLimits.zoom.min, kLimits.zoom.max, &o.zoom_to)
+        .integer("--zoom-period", 2, 100000, &o.zoom_period)
         .number("--yaw", kLimits.yaw_degrees.min, kLimits.yaw_degrees.max, &o.yaw)
         .number("--pitch", kLimits.pitch_degrees.min, kLimits.pitch_degrees.max, &o.pitch);
 }
@@ -201,6 +211,8 @@ void add_render_options(stipple::cli::Parser& p, Options& o) {
         .flag("--no-png", &o.png, false)
         .flag("--no-apng", &o.apng, false)
         .flag("--stats", &o.stats)
+        .flag("--check-gl", &o.check_gl)
+        .integer("--rss-every", 1, 100000, &o.rss_every)
         .choice("--backend",
                 {std::pair<const char*, std::string>{"egl", "egl"}, {"osmesa", "osmesa"}},
                 &o.backend);
@@ -294,6 +306,7 @@ stipple::FrameConfig pipeline_config(const Options& o, const Clips& clips) {
     pc.depth_readback = o.dots_out || o.mask_out;
     pc.skinning = o.dqs ? stipple::anim::Skinning::dqs : stipple::anim::Skinning::lbs;
     pc.line_width = float(o.line_width);
+    pc.check_gl_errors = o.check_gl;
     std::memcpy(pc.background, o.background, sizeof(pc.background));
     return pc;
 }
@@ -343,10 +356,40 @@ void write_frame(const Options& o, long f, stipple::Pipeline* pipeline, Outputs*
         die(error);
 }
 
+// The process's resident set size in KiB (VmRSS of /proc/self/status), or -1.
+long resident_kb() {
+    FILE* f = std::fopen("/proc/self/status", "r");
+    if (!f) return -1;
+    char line[256];
+    long kb = -1;
+    while (kb < 0 && std::fgets(line, sizeof(line), f))
+        if (std::strncmp(line, "VmRSS:", 6) == 0) kb = std::strtol(line + 6, nullptr, 10);
+    std::fclose(f);
+    return kb;
+}
+
+// --rss-every: DIR/rss.csv, one row per N frames (the soak test's memory curve).
+struct RssLog {
+    FILE* file = nullptr;
+    double last_ms = 0;  // Totals::frame_ms at the last row
+    long last_frame = 0;
+};
+
 struct Totals {
     stipple::StageTimes times;
     double frame_ms = 0, drawn = 0, refined = 0, budget_scale = 1;
 };
+
+// --zoom-to: the zoom of frame f, geometric between --zoom and --zoom-to; once over all
+// frames, or there and back every --zoom-period frames.
+double zoom_at(const Options& o, long f) {
+    double s = double(f) / double(o.frames - 1);
+    if (o.zoom_period > 0) {
+        const double phase = double(f % o.zoom_period) / double(o.zoom_period);
+        s = phase < 0.5 ? 2 * phase : 2 - 2 * phase;
+    }
+    return o.zoom * std::pow(o.zoom_to / o.zoom, s);
+}
 
 // Draws frame f and reads its colour back into out->rgba.
 void render_frame(const Options& o, const Clips& clips, long f, stipple::Pipeline* pipeline,
@@ -363,7 +406,7 @@ void render_frame(const Options& o, const Clips& clips, long f, stipple::Pipelin
     auto start = std::chrono::steady_clock::now();
     if (o.zoom_to > 0 && o.frames > 1) {
         stipple::FrameConfig view = pipeline->config;
-        view.zoom = float(o.zoom * std::pow(o.zoom_to / o.zoom, double(f) / double(o.frames - 1)));
+        view.zoom = float(zoom_at(o, f));
         const stipple::Status set = stipple::pipeline_set_view(pipeline, view);
         if (!set.ok()) die(std::string("--zoom-to: ") + set.message);
     }
@@ -380,9 +423,40 @@ void render_frame(const Options& o, const Clips& clips, long f, stipple::Pipelin
         std::min(totals->budget_scale, double(pipeline->refinement_stats.budget_scale));
 }
 
+void open_rss_log(const Options& o, RssLog* log) {
+    if (o.rss_every <= 0) return;
+    const std::string path = o.out + "/rss.csv";
+    log->file = std::fopen(path.c_str(), "w");
+    if (!log->file) die("cannot write '" + path + "'");
+    std::fputs("frame,rss_kb,ms_per_frame\n", log->file);
+}
+
+// After frame f (0-based): a row when f + 1 is a multiple of --rss-every.
+void log_rss(const Options& o, long f, const Totals& t, RssLog* log) {
+    if (!log->file || (f + 1) % o.rss_every != 0) return;
+    const long frames = f + 1 - log->last_frame;
+    std::fprintf(log->file, "%ld,%ld,%.3f\n", f + 1, resident_kb(),
+                 (t.frame_ms - log->last_ms) / double(frames));
+    std::fflush(log->file);
+    log->last_ms = t.frame_ms;
+    log->last_frame = f + 1;
+}
+
+// --check-gl: 0, or 1 after a one-line message naming the first GL error and its pass.
+int report_gl_errors(const Options& o, const stipple::Pipeline& p) {
+    const stipple::GlErrorLog& e = stipple::pipeline_gl_errors(p);
+    if (!o.check_gl || e.count == 0) return 0;
+    std::fprintf(stderr,
+                 "stipple-play: GL error %s after the %s pass (%u GL errors in %ld frames)\n",
+                 stipple::gl_error_name(e.first_error), e.first_pass ? e.first_pass : "?", e.count,
+                 o.frames);
+    return 1;
+}
+
 // --stats: one JSON object of counts and mean timings per frame.
 void print_stats(const Options& o, const stipple::Asset& asset, const Clips& clips,
-                 const stipple::platform::HeadlessContext& context, const Totals& t) {
+                 const stipple::platform::HeadlessContext& context, const Totals& t,
+                 const stipple::Pipeline& pipeline) {
     using stipple::cli::fixed;
     const double n = double(o.frames);
     stipple::cli::Json j;
@@ -407,6 +481,7 @@ void print_stats(const Options& o, const stipple::Asset& asset, const Clips& cli
     stipple::cli::Json per_stage;
     for (const auto& stage : stages) per_stage[stage.first] = fixed(stage.second / n, 3);
     j["ms_per_stage"] = per_stage;
+    if (o.check_gl) j["gl_errors"] = stipple::pipeline_gl_errors(pipeline).count;
     stipple::cli::print_json(j);
 }
 
@@ -443,13 +518,18 @@ int main(int argc, char** argv) {
     Outputs out;
     open_outputs(o, *pipeline, &out);
     Totals totals;
+    RssLog rss;
+    open_rss_log(o, &rss);
     for (long f = 0; f < o.frames; ++f) {
         render_frame(o, clips, f, pipeline.get(), &out, &totals);
         write_frame(o, f, pipeline.get(), &out);
+        log_rss(o, f, totals, &rss);
     }
+    if (rss.file && std::fclose(rss.file) != 0) die("cannot write '" + o.out + "/rss.csv'");
     if (o.apng && !out.apng.finish(&error)) die(error);
-    if (o.stats) print_stats(o, asset, clips, context, totals);
+    if (o.stats) print_stats(o, asset, clips, context, totals, *pipeline);
+    const int gl_failed = report_gl_errors(o, *pipeline);
     stipple::pipeline_destroy(pipeline.get());
     stipple::platform::destroy_headless_context(&context);
-    return 0;
+    return gl_failed;
 }

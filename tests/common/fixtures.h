@@ -1,5 +1,6 @@
 // Shared test fixtures, the one place for what several test files need:
-//   paths        source(), bin(), and the assets baked once per ctest run (baked_asset());
+//   paths        source(), bin(), play_checked() (stipple-play --check-gl), and the assets
+//                baked once per ctest run (baked_asset());
 //   processes    run() a built CLI and capture its output;
 //   scratch      ScratchDir, a fresh directory per test (per process: ctest runs tests in
 //                parallel processes), removed afterwards;
@@ -38,6 +39,12 @@ inline std::string source(const std::string& path) {
 }
 inline std::string bin(const std::string& name) {
     return std::string(STIPPLE_BIN_DIR) + "/" + name;
+}
+
+// stipple-play with --check-gl: the frame checks run every player through it, so a GL error
+// in any pass fails them (exit 1, the pass named in the log).
+inline std::string play_checked() {
+    return bin("stipple-play") + " --check-gl";
 }
 
 namespace detail {

@@ -66,6 +66,7 @@ class Stage {
         config.height = kHeight;
         config.silhouettes = false;
         config.depth_readback = true;
+        config.check_gl_errors = true;  // every frame drawn here is also checked for GL errors
         config.frame_clip = clip_;
         pipeline_.reset(new Pipeline());
         const Status init = pipeline_init(pipeline_.get(), asset_, headless_.gl(), config);
@@ -104,6 +105,10 @@ class Stage {
         pipeline_frame(pipeline_.get(), clip_, time, nullptr);
         renderer_read_color(&pipeline_->renderer, rgba_.data());
         renderer_read_depth(&pipeline_->renderer, scratch_.data(), depth_.data());
+        const GlErrorLog& gl_errors = pipeline_gl_errors(*pipeline_);
+        EXPECT_EQ(gl_errors.count, 0u)
+            << gl_error_name(gl_errors.first_error) << " after the "
+            << (gl_errors.first_pass ? gl_errors.first_pass : "?") << " pass";
         Shot s;
         s.image.width = s.mask.width = kWidth;
         s.image.height = s.mask.height = kHeight;

@@ -34,7 +34,7 @@ class DoubleSidedFrames : public ::testing::Test {
                              const std::string& args) {
         const std::string out = dir + "/" + name;
         std::string log;
-        EXPECT_EQ(test::run(test::bin("stipple-play") + " " + dir + "/" + asset + " --out " + out +
+        EXPECT_EQ(test::run(test::play_checked() + " " + dir + "/" + asset + " --out " + out +
                                 " --frames 1 --no-apng --size 320x320 --time 1 " + args,
                             &log),
                   0)

@@ -35,7 +35,7 @@ class FrameChecks : public ::testing::Test {
     static Image frame(const std::string& asset, const std::string& name, const std::string& args) {
         std::string out = dir + "/" + name;
         std::string log;
-        int rc = run(bin("stipple-play") + " " + dir + "/" + asset + " --out " + out +
+        int rc = run(play_checked() + " " + dir + "/" + asset + " --out " + out +
                          " --frames 1 --no-apng " + args,
                      &log);
         EXPECT_EQ(rc, 0) << log;
@@ -94,7 +94,7 @@ TEST_F(FrameChecks, ToneIsKeptUnderDeformationWithRelevanceUpdates) {
 // other, and the worst frame keeps ~86% of its dots (mean 95%) for reasons of occlusion.
 TEST_F(FrameChecks, DotsPersistAcrossConsecutiveFrames) {
     std::string out = dir + "/coherence";
-    ASSERT_EQ(run(bin("stipple-play") + " " + dir + "/cesium.stip --out " + out +
+    ASSERT_EQ(run(play_checked() + " " + dir + "/cesium.stip --out " + out +
                   " --frames 30 --fps 30 --yaw -60 --dots-out --no-png --no-apng"),
               0);
     double worst = 1;

@@ -38,7 +38,7 @@ class FramingFrames : public ::testing::Test {
                                           int frames, const std::string& args) {
         const std::string out = dir + "/" + name;
         std::string log;
-        EXPECT_EQ(test::run(test::bin("stipple-play") + " " + dir + "/" + asset + " --out " + out +
+        EXPECT_EQ(test::run(test::play_checked() + " " + dir + "/" + asset + " --out " + out +
                                 " --no-apng --size 240x180 --tone 0 --no-silhouettes "
                                 "--background 808080 --frames " +
                                 std::to_string(frames) + " " + args,

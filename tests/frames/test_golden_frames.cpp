@@ -38,9 +38,9 @@ TEST(GoldenFrames, MatchBlessedImages) {
         name = trim(name);
         const std::string asset = baked_asset(trim(input), bake), out = work + "/" + name;
         ASSERT_FALSE(asset.empty()) << name;
-        ASSERT_EQ(run(bin("stipple-play") + " " + asset + " --out " + out +
-                      " --frames 1 --no-apng " + play),
-                  0);
+        ASSERT_EQ(
+            run(play_checked() + " " + asset + " --out " + out + " --frames 1 --no-apng " + play),
+            0);
         std::string log;
         int rc =
             run(bin("stipple-compare") + " " + out + "/frame_0000.png " +

@@ -41,7 +41,7 @@ std::string PlayerAnimation::dir;
 // half and half with 1 -> s = 1.25; frame 30 is all "stretch" at 1 s -> s = 2.
 TEST_F(PlayerAnimation, CrossfadeRampsFromOneClipToTheOther) {
     std::string out = dir + "/crossfade";
-    ASSERT_EQ(run(bin("stipple-play") + " " + dir + "/tube.stip --out " + out +
+    ASSERT_EQ(run(play_checked() + " " + dir + "/tube.stip --out " + out +
                   " --clip rest --crossfade stretch:1 --frames 31 --fps 30 --zoom 0.5"
                   " --size 200x400 --tone 0 --no-silhouettes --background 808080 --no-apng"),
               0);
@@ -57,13 +57,13 @@ TEST_F(PlayerAnimation, CrossfadeRampsFromOneClipToTheOther) {
 
 TEST_F(PlayerAnimation, BlendLayersTwoClipsWithAWeight) {
     std::string out = dir + "/blend";
-    ASSERT_EQ(run(bin("stipple-play") + " " + dir + "/tube.stip --out " + out +
+    ASSERT_EQ(run(play_checked() + " " + dir + "/tube.stip --out " + out +
                   " --clip rest --blend stretch:0.5 --time 1 --frames 1 --zoom 0.5"
                   " --size 200x400 --tone 0 --no-silhouettes --background 808080 --no-apng"),
               0);
     // The reference blends with weight 0: the rest pose, framed like the blend (both clips).
     std::string ref = dir + "/blend_ref";
-    ASSERT_EQ(run(bin("stipple-play") + " " + dir + "/tube.stip --out " + ref +
+    ASSERT_EQ(run(play_checked() + " " + dir + "/tube.stip --out " + ref +
                   " --clip rest --blend stretch:0 --frames 1 --zoom 0.5 --size 200x400 --tone 0"
                   " --no-silhouettes --background 808080 --no-apng"),
               0);
@@ -77,7 +77,7 @@ TEST_F(PlayerAnimation, BlendLayersTwoClipsWithAWeight) {
 TEST_F(PlayerAnimation, DualQuaternionSkinningRendersAndDiffersOnlySlightlyFromLbs) {
     std::string log;
     for (const char* method : {"lbs", "dqs"})
-        ASSERT_EQ(run(bin("stipple-play") + " " + dir + "/tube.stip --out " + dir + "/" + method +
+        ASSERT_EQ(run(play_checked() + " " + dir + "/tube.stip --out " + dir + "/" + method +
                           " --clip stretch --time 1 --frames 1 --zoom 0.5 --size 200x400"
                           " --tone 0 --no-silhouettes --background 808080 --no-apng --skinning " +
                           method,
@@ -94,19 +94,43 @@ TEST_F(PlayerAnimation, DualQuaternionSkinningRendersAndDiffersOnlySlightlyFromL
 TEST_F(PlayerAnimation, BadClipOptionsAreNamed) {
     std::string log;
     EXPECT_EQ(
-        run(bin("stipple-play") + " " + dir + "/tube.stip --out " + dir + "/x --crossfade walk:1",
-            &log),
+        run(play_checked() + " " + dir + "/tube.stip --out " + dir + "/x --crossfade walk:1", &log),
         1);
     EXPECT_NE(log.find("no clip 'walk'"), std::string::npos) << log;
     EXPECT_EQ(
-        run(bin("stipple-play") + " " + dir + "/tube.stip --out " + dir + "/x --blend stretch",
-            &log),
+        run(play_checked() + " " + dir + "/tube.stip --out " + dir + "/x --blend stretch", &log),
         1);
     EXPECT_NE(log.find("--blend takes CLIP:WEIGHT"), std::string::npos) << log;
-    EXPECT_EQ(
-        run(bin("stipple-play") + " " + dir + "/tube.stip --out " + dir + "/x --skinning x", &log),
-        1);
+    EXPECT_EQ(run(play_checked() + " " + dir + "/tube.stip --out " + dir + "/x --skinning x", &log),
+              1);
     EXPECT_NE(log.find("--skinning must be lbs or dqs"), std::string::npos) << log;
+}
+
+// --check-gl puts the GL error count in --stats; --rss-every writes the soak test's memory
+// curve (scripts/soak.sh): a row per N frames, every RSS positive. A sweep there and back
+// (--zoom-period) draws the close-up twice.
+TEST_F(PlayerAnimation, CheckGlAndRssEveryReportWhatASoakNeeds) {
+    const std::string out = dir + "/soak";
+    std::string log;
+    ASSERT_EQ(run(play_checked() + " " + dir + "/tube.stip --out " + out +
+                      " --frames 40 --size 64x64 --zoom 0.5 --zoom-to 16 --zoom-period 20"
+                      " --no-png --no-apng --stats --rss-every 10",
+                  &log),
+              0)
+        << log;
+    EXPECT_NE(log.find("\"gl_errors\": 0"), std::string::npos) << log;
+    std::ifstream csv(out + "/rss.csv");
+    std::string line;
+    ASSERT_TRUE(std::getline(csv, line));
+    EXPECT_EQ(line, "frame,rss_kb,ms_per_frame");
+    int rows = 0;
+    long frame = 0, rss = 0;
+    while (std::getline(csv, line)) {
+        ASSERT_EQ(std::sscanf(line.c_str(), "%ld,%ld,", &frame, &rss), 2) << line;
+        EXPECT_EQ(frame, 10 * ++rows);
+        EXPECT_GT(rss, 1000);
+    }
+    EXPECT_EQ(rows, 4);
 }
 
 }  // namespace

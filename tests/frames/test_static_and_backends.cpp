@@ -37,7 +37,7 @@ TEST(StaticMeshes, ObjPlyAndStlBakeAndRender) {
             << log;
         EXPECT_NE(log.find("\"triangles\": 4"), std::string::npos) << log;
         EXPECT_NE(log.find("\"points\": 3000"), std::string::npos) << log;
-        ASSERT_EQ(run(bin("stipple-play") + " " + asset + " --out " + out +
+        ASSERT_EQ(run(play_checked() + " " + asset + " --out " + out +
                       " --frames 1 --no-apng --pitch 30 --yaw 30 --tone 0.4 --size 200x200"),
                   0);
         Image img;
@@ -56,7 +56,7 @@ TEST(Backends, OsmesaDrawsTheSameFrameAsEgl) {
     ASSERT_FALSE(asset.empty());
     std::string log;
     for (const char* backend : {"egl", "osmesa"}) {
-        ASSERT_EQ(run(bin("stipple-play") + " " + asset + " --out " + dir + "/" + backend +
+        ASSERT_EQ(run(play_checked() + " " + asset + " --out " + dir + "/" + backend +
                           " --frames 2 --no-apng --size 320x240 --stats --backend " + backend,
                       &log),
                   0)

@@ -18,10 +18,11 @@ static int open_player(const char* asset_path, const stipple_player_desc* desc,
     return 0;
 }
 
-/* Renders frame `time` of clip 0 and returns the number of dark pixels, or -1 on error
- * (the message is in stipple_last_error()). */
+/* Renders frame `time` of clip 0 with the GL error checks on and returns the number of dark
+ * pixels, or -1 on error (the message is in stipple_last_error()); *gl_errors gets
+ * stipple_player_gl_errors. */
 long c_api_render_dark_pixels(const char* asset_path, stipple_get_proc_fn get_proc, float time,
-                              uint32_t* points_drawn) {
+                              uint32_t* points_drawn, uint32_t* gl_errors) {
     stipple_asset* asset = NULL;
     stipple_player* player = NULL;
     stipple_player_desc desc;
@@ -31,6 +32,7 @@ long c_api_render_dark_pixels(const char* asset_path, stipple_get_proc_fn get_pr
     memset(&desc, 0, sizeof(desc));
     desc.width = 320;
     desc.height = 240;
+    desc.check_gl_errors = 1;
     desc.get_proc_address = get_proc;
     if (open_player(asset_path, &desc, &asset, &player) != 0) return -1;
     rgba = (uint8_t*)malloc(320 * 240 * 4);
@@ -38,6 +40,7 @@ long c_api_render_dark_pixels(const char* asset_path, stipple_get_proc_fn get_pr
     stipple_player_read_rgba(player, rgba);
     for (i = 0; i < 320 * 240; ++i) dark += rgba[i * 4] < 128;
     *points_drawn = stipple_player_points_drawn(player);
+    *gl_errors = stipple_player_gl_errors(player);
     free(rgba);
     stipple_player_destroy(player);
     stipple_asset_destroy(asset);

@@ -11,7 +11,7 @@
 extern "C" long c_api_blend_height(const char* asset_path, stipple_get_proc_fn get_proc,
                                    float weight);
 extern "C" long c_api_render_dark_pixels(const char* asset_path, stipple_get_proc_fn get_proc,
-                                         float time, uint32_t* points_drawn);
+                                         float time, uint32_t* points_drawn, uint32_t* gl_errors);
 extern "C" long c_api_closeup_dark_pixels(const char* asset_path, stipple_get_proc_fn get_proc,
                                           int refinement_budget);
 
@@ -25,11 +25,12 @@ TEST(CApi, RendersAStippledFrameFromC) {
     HeadlessGl gl;
     std::string error;
     ASSERT_TRUE(gl.open(&error)) << error;
-    uint32_t drawn = 0;
+    uint32_t drawn = 0, gl_errors = 1;
     long dark = c_api_render_dark_pixels(
-        asset.c_str(), stipple::platform::proc_loader(gl.context()), 0.5f, &drawn);
+        asset.c_str(), stipple::platform::proc_loader(gl.context()), 0.5f, &drawn, &gl_errors);
     EXPECT_GT(dark, 300) << stipple_last_error();
     EXPECT_GT(drawn, 200u);
+    EXPECT_EQ(gl_errors, 0u);  // desc.check_gl_errors: no pass raised a GL error
 }
 
 // Blending through the C API (with DQS): the tube's upper bone at scale 1 + weight.
