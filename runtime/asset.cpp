@@ -320,12 +320,14 @@ Status parse(const uint8_t* bytes, size_t size, DecodeBudget* budget, Asset* a) 
 #endif
     }
     const uint32_t tags[kSectionCount] = {
-        format::kTagMesh,  format::kTagSkin,  format::kTagClips,  format::kTagPointStream,
-        format::kTagEdges, format::kTagMorph, format::kTagBounds, format::kTagSides};
+        format::kTagMesh,        format::kTagSkin,  format::kTagClips,
+        format::kTagPointStream, format::kTagEdges, format::kTagMorph,
+        format::kTagBounds,      format::kTagSides, format::kTagStrokes};
     const format::SectionEntry* sec[kSectionCount];
     for (int i = 0; i < kSectionCount; ++i) {
         // Version 2 had no BNDS or SIDE; like any unknown tag there, they are ignored.
-        const bool known = h.version >= 3 || (i != kSectionBounds && i != kSectionSides);
+        const bool known =
+            h.version >= 3 || (i != kSectionBounds && i != kSectionSides && i != kSectionStrokes);
         sec[i] = known ? find_section(table, h.section_count, tags[i]) : nullptr;
         a->section_size[i] = sec[i] ? sec[i]->size : 0;
     }
@@ -447,8 +449,8 @@ int find_clip(const Asset& asset, const char* name) {
 }
 
 const char* section_name(int section) {
-    static const char* const kNames[kSectionCount] = {"MESH", "SKIN", "CLIP", "PNTQ",
-                                                      "EDGE", "MRPH", "BNDS", "SIDE"};
+    static const char* const kNames[kSectionCount] = {"MESH", "SKIN", "CLIP", "PNTQ", "EDGE",
+                                                      "MRPH", "BNDS", "SIDE", "STRK"};
     return section >= 0 && section < kSectionCount ? kNames[section] : "?";
 }
 

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "anim/anim.h"
+#include "runtime/asset_format.h"
 #include "runtime/status.h"
 
 namespace stipple {
@@ -62,6 +63,17 @@ struct BoundsView {
     const float* clips = nullptr;  // 6 per clip: every pose the clip samples, skinned
 };
 
+// Paintstrokes (STRK section, runtime/asset_format.h): records as stored, validated at load
+// (counts, runs inside the point array, anchors, host/joint/root indices, finite positions,
+// radii > 0, reserved bytes 0).
+struct StrokesView {
+    uint32_t stroke_count = 0;
+    uint32_t point_count = 0;
+    const format::StrokeRecord* strokes = nullptr;
+    const format::StrokePointRecord* points = nullptr;
+    uint32_t max_points_per_stroke = 0;  // the longest stroke's control points
+};
+
 struct SkinView {
     anim::Skeleton skeleton = {};
     const uint16_t* joints = nullptr;  // 4 per vertex, each < joint_count
@@ -78,6 +90,7 @@ enum : int {
     kSectionMorph,
     kSectionBounds,
     kSectionSides,
+    kSectionStrokes,
     kSectionCount
 };
 
@@ -94,6 +107,7 @@ struct Asset {
     anim::Morph morph = {};  // morph targets (empty if the asset has no MRPH section)
     SidesView sides;         // empty if no triangle is double-sided
     BoundsView bounds;       // present = false for version-2 assets
+    StrokesView strokes;     // empty if the asset has no STRK section
     uint16_t version = 0;
     size_t section_size[kSectionCount] = {};  // bytes per section, kSection* order (0: absent)
 

@@ -27,6 +27,7 @@ constexpr uint32_t kTagPointStream = fourcc('P', 'N', 'T', 'Q');  // the point h
 constexpr uint32_t kTagMorph = fourcc('M', 'R', 'P', 'H');        // morph targets
 constexpr uint32_t kTagBounds = fourcc('B', 'N', 'D', 'S');       // v3: up axis, rest/clip bounds
 constexpr uint32_t kTagSides = fourcc('S', 'I', 'D', 'E');        // v3: double-sided triangle runs
+constexpr uint32_t kTagStrokes = fourcc('S', 'T', 'R', 'K');      // paintstrokes (GI'98)
 constexpr uint32_t kNoFace = 0xFFFFFFFFu;                         // second face of a boundary edge
 
 struct FileHeader {  // 32 bytes at offset 0
@@ -96,6 +97,45 @@ constexpr uint32_t kUpZ = 2;  // the input was Z-up: rotated at bake so +Z becam
 
 // SIDE section (version 3): u32 run_count, then run_count (first triangle, triangle count)
 // pairs, ascending and non-overlapping: the double-sided triangles of the MESH section.
+
+// STRK section (optional; version 3 files may carry it): paintstroke data (GI'98 §3).
+//   u32 stroke_count, u32 point_count, StrokeRecord[stroke_count], StrokePointRecord[point_count]
+// Strokes are ordered so that their roots follow the point hierarchy's coarse-to-fine order
+// where they have one (fur); each stroke's control points are a contiguous run.
+enum StrokeAnchor : uint8_t {
+    kAnchorSurface = 0,  // host triangle + barycentrics; points in its tangent frame (below)
+    kAnchorObject = 1,   // points in object (bind) space, moved by nothing
+    kAnchorJoint = 2,    // points in bind space, moved by one joint's skin matrix
+};
+constexpr uint32_t kNoRootPoint = 0xFFFFFFFFu;
+struct StrokeRecord {            // 32 bytes
+    uint32_t first_point;        // into the StrokePointRecord array
+    uint32_t point_count;        // >= 2
+    uint8_t anchor;              // StrokeAnchor
+    uint8_t reserved[3];         // 0
+    uint32_t host;               // surface: triangle (< MESH triangles); joint: joint (< joints)
+    float bary_u, bary_v;        // surface: weights of the host's first and second vertex
+    uint32_t root_point;         // the hierarchy point the root sits on (LOD), or kNoRootPoint
+    uint8_t op_centre, op_edge;  // breadthwise opacity (eq. 5), 0..255 -> [0, 1]
+    uint16_t reserved2;          // 0
+};
+static_assert(sizeof(StrokeRecord) == 32, "stroke layout");
+// A control point. Surface anchor: position and global normal in the host's tangent frame at
+// the root: x along the host's first edge (v1 - v0, made orthogonal to the normal), y = z × x,
+// z the interpolated vertex normal; lengths in object units (not scaled by the triangle, so a
+// stroke keeps its shape when the surface stretches). Object and joint anchors: bind space.
+struct StrokePointRecord {  // 28 bytes
+    float position[3];
+    float radius;             // > 0
+    uint8_t colour[3];        // sRGB-free linear 0..255
+    uint8_t reflectance;      // 0..255 -> [0, 1]
+    uint8_t op_min, op_max;   // eq. 3, 0..255 -> [0, 1]
+    uint8_t global_depth;     // §5.3 d_gl, 0..255 -> [0, 1]
+    uint8_t reserved;         // 0
+    int8_t global_normal[3];  // §5.3 N_gl, snorm8 (all 0: no global shading)
+    uint8_t reserved2;        // 0
+};
+static_assert(sizeof(StrokePointRecord) == 28, "stroke point layout");
 
 // Section checksums: crc32() of runtime/crc32.h.
 

@@ -27,6 +27,10 @@ constexpr uint32_t kMaxKeys = 1u << 24;
 // MRPH: morph targets and weight slots.
 constexpr uint32_t kMaxMorphTargets = 1u << 16;
 constexpr uint32_t kMaxMorphSlots = 1u << 16;
+// STRK: strokes, control points (all strokes together) and control points per stroke.
+constexpr uint32_t kMaxStrokes = 1u << 22;
+constexpr uint32_t kMaxStrokePoints = 1u << 24;
+constexpr uint32_t kMaxPointsPerStroke = 256;
 // File: sections in the table.
 constexpr uint32_t kMaxSections = 64;
 // File: load_asset_file reads regular files of at most this many bytes (a 20M-point bake with
