@@ -207,9 +207,20 @@ std::vector<uint8_t> bounds_section(const RawScene& s) {
     return b.v;
 }
 
+// STRK section: counts, stroke records, control point records.
+std::vector<uint8_t> strokes_section(const BakedStrokes& s) {
+    Bytes b;
+    b.u32(uint32_t(s.strokes.size()));
+    b.u32(uint32_t(s.points.size()));
+    b.put(s.strokes);
+    b.put(s.points);
+    return b.v;
+}
+
 }  // namespace
 
-std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points) {
+std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points,
+                                  const BakedStrokes& strokes) {
     struct Section {
         uint32_t tag;
         std::vector<uint8_t> bytes;
@@ -229,6 +240,7 @@ std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& p
     if (std::find(scene.double_sided.begin(), scene.double_sided.end(), 1) !=
         scene.double_sided.end())
         sections.push_back({format::kTagSides, sides_section(scene)});
+    if (!strokes.empty()) sections.push_back({format::kTagStrokes, strokes_section(strokes)});
 
     std::vector<format::SectionEntry> table(sections.size());
     uint64_t offset = sizeof(format::FileHeader) + table.size() * sizeof(format::SectionEntry);

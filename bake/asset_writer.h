@@ -7,11 +7,15 @@
 #include "bake/bake_error.h"
 #include "bake/point_hierarchy.h"
 #include "bake/raw_scene.h"
+#include "bake/stroke_data.h"
 
 namespace stipple::bake {
 
-// Builds the whole file in memory (byte-identical for identical inputs).
-std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points);
+// Builds the whole file in memory (byte-identical for identical inputs). A STRK section is
+// written only when `strokes` holds any: an asset without strokes is the same bytes as before
+// strokes existed.
+std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points,
+                                  const BakedStrokes& strokes = BakedStrokes());
 
 // Writes to `path` through a uniquely named temporary file, fsync and a rename
 // (bake/atomic_file.h), so a failed bake never leaves a partial asset or a temp file behind.

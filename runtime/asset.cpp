@@ -354,6 +354,8 @@ Status parse(const uint8_t* bytes, size_t size, DecodeBudget* budget, Asset* a) 
     if (st.ok() && sec[kSectionSides])
         st = parse_sides(reader(sec[kSectionSides]), a->mesh, budget, a);
     if (st.ok() && sec[kSectionBounds]) st = parse_bounds(reader(sec[kSectionBounds]), a);
+    if (st.ok() && sec[kSectionStrokes])
+        st = detail::parse_strokes(reader(sec[kSectionStrokes]), a);
     return st;
 }
 

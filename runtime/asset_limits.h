@@ -31,6 +31,12 @@ constexpr uint32_t kMaxMorphSlots = 1u << 16;
 constexpr uint32_t kMaxStrokes = 1u << 22;
 constexpr uint32_t kMaxStrokePoints = 1u << 24;
 constexpr uint32_t kMaxPointsPerStroke = 256;
+// STRK: every control point coordinate and radius within +-kMaxStrokeCoordinate (object
+// units); a surface anchor's barycentrics >= -kStrokeBaryTolerance with u + v <= 1 + it; a
+// global normal (snorm8 / 127) all zero or of length 1 +- kStrokeNormalTolerance.
+constexpr float kMaxStrokeCoordinate = 1e6f;
+constexpr float kStrokeBaryTolerance = 1e-5f;
+constexpr float kStrokeNormalTolerance = 0.02f;
 // File: sections in the table.
 constexpr uint32_t kMaxSections = 64;
 // File: load_asset_file reads regular files of at most this many bytes (a 20M-point bake with

@@ -52,5 +52,8 @@ Status parse_clips(Reader r, uint32_t node_count, uint32_t morph_slots, DecodeBu
                    Asset* a);
 // PNTQ section (runtime/asset_points.cpp): the coded point hierarchy.
 Status parse_point_stream(Reader r, uint32_t triangle_count, DecodeBudget* budget, Asset* a);
+// STRK section (runtime/asset_strokes.cpp): paintstrokes, validated in place against the
+// mesh, skin and point hierarchy already in `a` (parse it after them).
+Status parse_strokes(Reader r, Asset* a);
 
 }  // namespace stipple::detail

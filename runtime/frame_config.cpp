@@ -38,6 +38,12 @@ Status check_limits(const FrameConfig& c) {
         check("line_width", c.line_width, s.line_width),
         check("dark_tone", c.dark_tone, s.dark_tone),
         check("refinement_budget", c.refinement_budget, s.refinement_budget),
+        check("stroke_quality", c.stroke_quality, s.stroke_quality),
+        check("stroke_tol_theta", c.stroke_tol_theta, s.stroke_tol_theta),
+        check("stroke_tol_z", c.stroke_tol_z, s.stroke_tol_z),
+        check("stroke_vertex_budget", c.stroke_vertex_budget, s.stroke_vertex_budget),
+        check("stroke_lod_px", c.stroke_lod_px, s.stroke_lod_px),
+        check("stroke_nudge", c.stroke_nudge, s.stroke_nudge),
     };
     for (const Status& st : checks)
         if (!st.ok()) return st;
@@ -59,6 +65,9 @@ Status resolve_frame_config(const FrameConfig& in, FrameConfig* out) {
     c.max_point_size = or_default(c.max_point_size, s.max_point_size);
     c.smooth_slope = or_default(c.smooth_slope, s.smooth_slope);
     c.line_width = or_default(c.line_width, s.line_width);
+    c.stroke_tol_theta = or_default(c.stroke_tol_theta, s.stroke_tol_theta);
+    c.stroke_tol_z = or_default(c.stroke_tol_z, s.stroke_tol_z);
+    c.stroke_vertex_budget = or_default(c.stroke_vertex_budget, s.stroke_vertex_budget);
     Status st = check_limits(c);
     if (st.ok()) *out = c;
     return st;
@@ -68,6 +77,8 @@ FrameConfig default_frame_config() {
     FrameConfig zero;
     zero.width = zero.height = 0;
     zero.zoom = zero.fov_degrees = zero.max_point_size = zero.smooth_slope = zero.line_width = 0;
+    zero.stroke_tol_theta = zero.stroke_tol_z = 0;
+    zero.stroke_vertex_budget = 0;
     FrameConfig resolved;
     // The table's defaults lie inside its own ranges, so this cannot fail.
     if (!resolve_frame_config(zero, &resolved).ok()) return FrameConfig();

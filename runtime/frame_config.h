@@ -38,14 +38,24 @@ struct FrameSettings {
     Setting<float> line_width{1.0f, 0.5f, 16.0f};                 // pixels
     Setting<float> dark_tone{0.6f, 0.0f, 1.0f};                   // thesis §8.4
     Setting<uint32_t> refinement_budget{1u << 18, 0u, 1u << 22};  // extra points per frame
-    float background[3] = {1.0f, 1.0f, 1.0f};  // white paper; each channel in [0, 1]
+    // Paintstrokes (GI'98, runtime/paintstroke.h): quality -1 = auto, tolerances in pixels,
+    // vertices per frame (StrokeVertex, 48 bytes each; taken only when the asset has strokes),
+    // and the LOD cut (a stroke draws when its root point's relevance radius projects to at
+    // least this many pixels; 0 draws every stroke).
+    Setting<int> stroke_quality{-1, -1, 2};
+    Setting<float> stroke_tol_theta{1.0f, 0.05f, 64.0f};
+    Setting<float> stroke_tol_z{0.5f, 0.05f, 64.0f};
+    Setting<uint32_t> stroke_vertex_budget{1u << 18, 1024u, 1u << 23};
+    Setting<float> stroke_lod_px{0.0f, 0.0f, 256.0f};
+    Setting<float> stroke_nudge{0.5f, 0.0f, 1.0f};  // GI'98 §4.4 quality-0 normal nudge
+    float background[3] = {1.0f, 1.0f, 1.0f};       // white paper; each channel in [0, 1]
 };
 inline constexpr FrameSettings kFrameSettings{};
 
 // Everything about how a frame is drawn. Member initialisers are the table's defaults; in
-// addition, a zero width, height, zoom, fov_degrees, max_point_size, smooth_slope or
-// line_width means "the default" (zero is not a meaningful value for them).
-// resolve_frame_config applies both and checks every limit.
+// addition, a zero width, height, zoom, fov_degrees, max_point_size, smooth_slope,
+// line_width, stroke_tol_theta, stroke_tol_z or stroke_vertex_budget means "the default" (zero is
+// not a meaningful value for them). resolve_frame_config applies both and checks every limit.
 struct FrameConfig {
     int width = kFrameSettings.width.fallback;
     int height = kFrameSettings.height.fallback;
@@ -72,6 +82,15 @@ struct FrameConfig {
     // the baked hierarchy runs out (close-ups, stretch). 0 turns it off.
     uint32_t refinement_budget = kFrameSettings.refinement_budget.fallback;
     float dark_tone = kFrameSettings.dark_tone.fallback;  // darkest tone lighting asks for
+    // Paintstrokes: drawn when the asset has a STRK section and `strokes` is on; they share the
+    // depth pass with the stipples and compose into the same image.
+    bool strokes = true;
+    int stroke_quality = kFrameSettings.stroke_quality.fallback;        // -1 auto, or 0, 1, 2
+    float stroke_tol_theta = kFrameSettings.stroke_tol_theta.fallback;  // GI'98 tol_theta, px
+    float stroke_tol_z = kFrameSettings.stroke_tol_z.fallback;          // GI'98 tol_z, px
+    uint32_t stroke_vertex_budget = kFrameSettings.stroke_vertex_budget.fallback;
+    float stroke_lod_px = kFrameSettings.stroke_lod_px.fallback;
+    float stroke_nudge = kFrameSettings.stroke_nudge.fallback;
     // Debug: call glGetError after the depth, lines and dots passes and each readback, and
     // record the errors in the renderer (pipeline_gl_errors). Off: no check costs a frame.
     bool check_gl_errors = false;

@@ -12,6 +12,7 @@
 #include "runtime/double_sided.h"
 #include "runtime/point_placement.h"
 #include "runtime/silhouette.h"
+#include "runtime/stroke_anchor.h"
 
 namespace stipple {
 
@@ -192,6 +193,9 @@ void setup_camera(Pipeline* p) {
     const glm::mat4 proj =
         glm::perspective(2.0f * zoomed_half_fov, aspect, near_plane, distance + 3.0f * radius);
     p->view_projection = proj * view;
+    p->view = view;
+    p->projection = proj;
+    p->focal_px = 0.5f * float(c.height) / std::tan(zoomed_half_fov);
 
     SizeParams& s = p->size_params;
     s.view_projection = p->view_projection;
@@ -204,6 +208,39 @@ void setup_camera(Pipeline* p) {
     // Key light from the upper left, in front of the subject (camera space), to world.
     const glm::vec3 light_view = glm::normalize(glm::vec3(-0.5f, 0.6f, 0.6f));
     s.light_direction = glm::normalize(glm::vec3(glm::inverse(view) * glm::vec4(light_view, 0.0f)));
+    p->light_eye = light_view;
+}
+
+// Only dots with a size go to the GPU: at 100k points a frame draws ~5k, and uploading
+// and vertex-shading the other 95% cost llvmpipe more than this compaction costs here.
+uint32_t compact_drawn_points(Pipeline* p, uint32_t count) {
+    uint32_t drawn = 0;
+    const float* size = p->size.get();
+    const float* position = p->point_positions.get();
+    float* draw_size = p->draw_sizes.get();
+    float* draw_position = p->draw_positions.get();
+    for (uint32_t i = 0; i < count; ++i) {
+        draw_position[drawn * 3] = position[i * 3];
+        draw_position[drawn * 3 + 1] = position[i * 3 + 1];
+        draw_position[drawn * 3 + 2] = position[i * 3 + 2];
+        draw_size[drawn] = size[i];
+        drawn += size[i] > 0.0f;
+    }
+    return drawn;
+}
+
+// What the stroke stage reads from this frame.
+StrokeFrameInput stroke_input(const Pipeline& p) {
+    StrokeFrameInput in;
+    in.positions = p.vertex_positions.get();
+    in.normals = p.vertex_normals.get();
+    in.skin_matrices = p.asset->skinned ? p.skin_matrices.get() : nullptr;
+    in.point_radius = p.radius.get();
+    in.view = p.view;
+    in.projection = p.projection;
+    in.focal_px = p.focal_px;
+    in.light_eye = p.light_eye;
+    return in;
 }
 
 // The finest quarter of the bake is where the run-time refinement takes over: extra points
@@ -351,7 +388,11 @@ Status pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const Fra
     if (st.ok()) st = alloc_frame_buffers(p);
     if (st.ok()) st = place_rest_pose(p);
     if (st.ok()) st = renderer_init(&p->renderer, gl, renderer_config(*p));
-    if (!st.ok()) return st;
+    if (st.ok()) st = stroke_stage_init(&p->strokes, asset, gl, p->config);
+    if (!st.ok()) {
+        pipeline_destroy(p);
+        return st;
+    }
     // Draw the rest pose once now: llvmpipe compiles shaders on first use (15-25 ms), which
     // belongs to load time, not to the first frame.
     pipeline_frame(p, AnimationState(), nullptr);
@@ -413,21 +454,7 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
         fade_baked_points(p->refinement, a.points, p->size.get());
     }
     const uint32_t count = baked + p->refined_count;
-    // Only dots with a size go to the GPU: at 100k points a frame draws ~5k, and uploading
-    // and vertex-shading the other 95% cost llvmpipe more than this compaction costs here.
-    uint32_t drawn = 0;
-    const float* size = p->size.get();
-    const float* position = p->point_positions.get();
-    float* draw_size = p->draw_sizes.get();
-    float* draw_position = p->draw_positions.get();
-    for (uint32_t i = 0; i < count; ++i) {
-        draw_position[drawn * 3] = position[i * 3];
-        draw_position[drawn * 3 + 1] = position[i * 3 + 1];
-        draw_position[drawn * 3 + 2] = position[i * 3 + 2];
-        draw_size[drawn] = size[i];
-        drawn += size[i] > 0.0f;
-    }
-    p->points_drawn = drawn;
+    p->points_drawn = compact_drawn_points(p, count);
     if (t) t->size += ms_since(&clock);
     p->lines_drawn = 0;
     if (p->config.silhouettes && a.edges.edge_count > 0) {
@@ -437,8 +464,15 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
                                           p->vertex_positions.get(), p->lines.get());
     }
     if (t) t->silhouette += ms_since(&clock);
+    const StrokeFrameInput strokes = stroke_input(*p);
+    stroke_stage_update(&p->strokes, a, strokes, p->config.stroke_lod_px);
+    if (t) t->strokes += ms_since(&clock);
     renderer_draw_mesh(&p->renderer, p->view_projection, p->vertex_positions.get(),
                        a.mesh.vertex_count);
+    if (p->strokes.enabled) {  // over the depth pass, into its colour and depth, before the ink
+        renderer_begin_overlay(&p->renderer);
+        stroke_stage_draw(&p->strokes, strokes);
+    }
     renderer_draw_lines(&p->renderer, p->view_projection, p->lines.get(), p->lines_drawn);
     renderer_draw_points(&p->renderer, p->view_projection, p->draw_positions.get(),
                          p->draw_sizes.get(), p->points_drawn);
@@ -467,17 +501,53 @@ Status pipeline_set_view(Pipeline* p, const FrameConfig& in) {
     c.max_point_size = view.max_point_size;
     c.smooth_slope = view.smooth_slope;
     c.relevance_update = view.relevance_update;
+    c.stroke_quality = view.stroke_quality;
+    c.stroke_tol_theta = view.stroke_tol_theta;
+    c.stroke_tol_z = view.stroke_tol_z;
+    c.stroke_lod_px = view.stroke_lod_px;
+    c.stroke_nudge = view.stroke_nudge;
+    stroke_stage_configure(&p->strokes, c);
     setup_camera(p);
     return {};
 }
 
-glm::vec3 pipeline_project(const Pipeline& p, uint32_t i) {
-    const glm::vec4 clip =
-        p.view_projection * glm::vec4(p.point_positions[i * 3], p.point_positions[i * 3 + 1],
-                                      p.point_positions[i * 3 + 2], 1.0f);
+namespace {
+
+// Clip space to pixels (origin top-left) and window depth.
+glm::vec3 to_pixels(const Pipeline& p, const glm::vec4& clip) {
     const glm::vec3 ndc = glm::vec3(clip) / clip.w;
     return glm::vec3((ndc.x * 0.5f + 0.5f) * float(p.config.width),
                      (0.5f - ndc.y * 0.5f) * float(p.config.height), ndc.z * 0.5f + 0.5f);
+}
+
+}  // namespace
+
+glm::vec3 pipeline_project(const Pipeline& p, uint32_t i) {
+    return to_pixels(
+        p, p.view_projection * glm::vec4(p.point_positions[i * 3], p.point_positions[i * 3 + 1],
+                                         p.point_positions[i * 3 + 2], 1.0f));
+}
+
+uint32_t pipeline_stroke_roots(const Pipeline& p, StrokeRootSample* out, uint32_t capacity) {
+    if (!p.strokes.enabled) return 0;
+    const Asset& a = *p.asset;
+    const StrokesView& v = a.strokes;
+    const glm::mat4* joints = a.skinned ? p.skin_matrices.get() : nullptr;
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < v.stroke_count && n < capacity; ++i) {
+        const format::StrokeRecord& r = v.strokes[i];
+        const glm::vec3 drawn =
+            to_pixels(p, p.projection * glm::vec4(p.strokes.points[r.first_point].position, 1.0f));
+        const glm::vec3 surface =
+            r.root_point != format::kNoRootPoint
+                ? pipeline_project(p, r.root_point)
+                : to_pixels(p, p.view_projection *
+                                   glm::vec4(stroke_root(v, i, a.mesh, p.vertex_positions.get(),
+                                                         p.vertex_normals.get(), joints),
+                                             1.0f));
+        out[n++] = StrokeRootSample{i, drawn.x, drawn.y, surface.x, surface.y};
+    }
+    return n;
 }
 
 uint32_t pipeline_visible_dots(const Pipeline& p, const float* depth, VisibleDot* out,
@@ -498,6 +568,7 @@ uint32_t pipeline_visible_dots(const Pipeline& p, const float* depth, VisibleDot
 }
 
 void pipeline_destroy(Pipeline* p) {
+    stroke_stage_destroy(&p->strokes);
     renderer_destroy(&p->renderer);
     *p = Pipeline();
 }

@@ -15,6 +15,7 @@
 #include "runtime/point_triangulation.h"
 #include "runtime/renderer.h"
 #include "runtime/stipple_size.h"
+#include "runtime/stroke_stage.h"
 
 namespace stipple {
 
@@ -30,13 +31,16 @@ struct AnimationState {
 
 struct StageTimes {  // milliseconds
     double sample = 0, skin = 0, place = 0, relevance = 0, refine = 0, size = 0, silhouette = 0,
-           draw = 0, readback = 0;
+           strokes = 0, draw = 0, readback = 0;
 };
 
 struct Pipeline {
     const Asset* asset = nullptr;
     FrameConfig config;  // resolved (runtime/frame_config.h)
     glm::mat4 view_projection = glm::mat4(1.0f);
+    glm::mat4 view = glm::mat4(1.0f), projection = glm::mat4(1.0f);  // view_projection's parts
+    float focal_px = 0.0f;                  // pixels per unit at unit distance (this zoom)
+    glm::vec3 light_eye{0.0f, 0.0f, 1.0f};  // the key light, toward it, eye space
     SizeParams size_params;
     Renderer renderer;
 
@@ -72,6 +76,7 @@ struct Pipeline {
     std::unique_ptr<float[]> lines;                 // 6 * edge_count
     uint32_t points_drawn = 0;                      // size > 0 in the last frame
     uint32_t lines_drawn = 0;                       // silhouette lines
+    StrokeStage strokes;                            // paintstrokes (empty without STRK)
 };
 
 // Resolves `config` (resolve_frame_config: defaults, limits), takes every buffer a frame needs
@@ -125,6 +130,19 @@ struct VisibleDot {
 // (p.point_capacity is always enough) and returns the count.
 uint32_t pipeline_visible_dots(const Pipeline& p, const float* depth, VisibleDot* out,
                                uint32_t capacity);
+
+// A paintstroke's root in the last frame: the first control point as drawn and the host
+// surface point it is anchored at (the stipple stage's own placement of the root's hierarchy
+// point, or the anchor itself for strokes without one), both in pixels (origin top-left).
+struct StrokeRootSample {
+    uint32_t stroke;
+    float x, y;
+    float surface_x, surface_y;
+};
+
+// Writes at most `capacity` roots (asset.strokes.stroke_count is enough); 0 when strokes are
+// off or the asset has none.
+uint32_t pipeline_stroke_roots(const Pipeline& p, StrokeRootSample* out, uint32_t capacity);
 
 void pipeline_destroy(Pipeline* p);
 

@@ -25,6 +25,10 @@ struct StrokePoint {
     float op_max = 1.0f;            // ... seen orthogonally to the path
     glm::vec3 global_normal{0.0f};  // §5.3 N_gl (unit, or zero: no global shading)
     float global_depth = 0.0f;      // §5.3 d_gl in [0, 1]: 0 on the global surface
+    // op_min / op_max: eq. 3 as printed, which tessellate_stroke implements, weights op_max by
+    // |view . unit tangent|: op_max where the view runs along the path, op_min where the path
+    // is seen broadside; §5.1's prose names them the other way round. See
+    // runtime/paintstroke_breadthwise.cpp.
 };
 
 // Per stroke (not per control point): breadthwise opacity (eq. 5).
@@ -83,7 +87,8 @@ struct StrokeSegment {
 };
 
 // Caller-owned output buffers with their capacities. tessellate_stroke appends; when a buffer
-// would overflow it stops adding segments and sets `overflow` (never writes past a capacity).
+// would overflow it stops adding segments and sets `overflow` (never writes past a capacity);
+// a mesh already marked `overflow` takes nothing more until the caller clears it.
 struct StrokeMesh {
     StrokeVertex* vertices = nullptr;
     uint32_t vertex_capacity = 0, vertex_count = 0;
@@ -109,7 +114,10 @@ void tessellate_stroke(const StrokePoint* points, uint32_t count, const StrokeSt
                        const TessellationParams& params, StrokeMesh* out, TessellationStats* stats);
 
 // Worst-case output of one stroke of `count` control points (every section split to
-// params.max_depth at quality 2 with both sides and end caps), for sizing StrokeMesh.
+// params.max_depth at quality 2 with both sides and end caps), for sizing StrokeMesh. Each
+// section is first cut at up to 4 inflection points (§4.2.3), each piece then recursing to
+// max_depth (clamped to [0, 16]): (count - 1) * 5 * 2^max_depth segments of 16 vertices and
+// 48 indices, plus 2 caps of 9 vertices and 24 indices.
 struct StrokeMeshBound {
     uint64_t vertices = 0, indices = 0, segments = 0;
 };

@@ -341,6 +341,14 @@ void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const flo
     check_pass(r, "depth");
 }
 
+void renderer_begin_overlay(Renderer* r) {
+    const GlApi& gl = r->gl;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+    const GLenum first[1] = {GL_COLOR_ATTACHMENT0};
+    gl.DrawBuffers(1, first);
+    gl.Viewport(0, 0, r->config.width, r->config.height);
+}
+
 void renderer_draw_points(Renderer* r, const glm::mat4& view_projection, const float* positions,
                           const float* sizes, uint32_t point_count) {
     const GlApi& gl = r->gl;

@@ -76,6 +76,10 @@ void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const flo
 void renderer_draw_points(Renderer* r, const glm::mat4& view_projection, const float* positions,
                           const float* sizes, uint32_t point_count);
 
+// Binds the offscreen framebuffer (colour and depth; not the depth copy) and its viewport for a
+// pass that draws its own geometry over the mesh pass (paintstrokes, runtime/stroke_stage.h).
+void renderer_begin_overlay(Renderer* r);
+
 // Draws `line_count` ink lines (6 floats each) depth-tested against the mesh pass.
 void renderer_draw_lines(Renderer* r, const glm::mat4& view_projection, const float* lines,
                          uint32_t line_count);

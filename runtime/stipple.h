@@ -38,6 +38,15 @@ typedef enum stipple_result {
 
 typedef struct stipple_asset stipple_asset;
 typedef struct stipple_player stipple_player;
+
+/* Paintstroke breadthwise quality (GI'98 §4.3). AUTO (0, the default) picks 0, 1 or 2 per
+ * stroke by its projected radius. */
+typedef enum stipple_stroke_quality {
+    STIPPLE_STROKE_QUALITY_AUTO = 0,
+    STIPPLE_STROKE_QUALITY_0 = 1, /* one polygon per segment facing the viewer */
+    STIPPLE_STROKE_QUALITY_1 = 2, /* two per side */
+    STIPPLE_STROKE_QUALITY_2 = 3  /* four per side */
+} stipple_stroke_quality;
 typedef void* (*stipple_get_proc_fn)(const char* name);
 
 /* Defaults and limits come from one table (runtime/frame_config.h, kFrameSettings); a value
@@ -65,6 +74,17 @@ typedef struct stipple_player_desc {
     int check_gl_errors;          /* 1: call glGetError after each pass (depth, lines, dots) and
                                      each readback; stipple_player_gl_errors counts what it
                                      reports. A debug aid: each check is a driver round trip */
+    int no_strokes;               /* 1: do not draw the asset's paintstrokes (STRK section) */
+    int stroke_quality;           /* stipple_stroke_quality; 0: auto */
+    float stroke_tol_theta;       /* GI'98 tol_theta in pixels, in [0.05, 64]; 0: 1 */
+    float stroke_tol_z;           /* GI'98 tol_z in pixels, in [0.05, 64]; 0: 0.5 */
+    float stroke_lod_px;          /* draw a stroke where its root point's relevance radius
+                                     projects to >= this many pixels, in [0, 256]; 0: all */
+    float stroke_nudge;           /* GI'98 §4.4: how far quality-0 edge normals lean toward the
+                                     centre normal, in (0, 1]; 0: 0.5, < 0: no nudge */
+    int stroke_vertex_budget;     /* tessellated vertices per frame, in [1024, 8388608]; 0:
+                                     262144 (48 bytes each, taken only if the asset has
+                                     strokes) */
     stipple_get_proc_fn get_proc_address; /* required */
 } stipple_player_desc;
 
@@ -94,6 +114,7 @@ stipple_result stipple_asset_load_memory_ex(const void* data, size_t size,
 void stipple_asset_destroy(stipple_asset* asset);
 uint32_t stipple_asset_point_count(const stipple_asset* asset);
 uint32_t stipple_asset_clip_count(const stipple_asset* asset);
+uint32_t stipple_asset_stroke_count(const stipple_asset* asset);                /* 0 without STRK */
 const char* stipple_asset_clip_name(const stipple_asset* asset, uint32_t clip); /* NULL if none */
 float stipple_asset_clip_duration(const stipple_asset* asset, uint32_t clip);
 int stipple_asset_find_clip(const stipple_asset* asset, const char* name_or_index); /* -1 */
@@ -119,6 +140,9 @@ void stipple_player_draw_blend(stipple_player* player, int clip, float time, int
 /* width * height * 4 bytes, bottom row first (GL order). */
 void stipple_player_read_rgba(stipple_player* player, uint8_t* rgba);
 uint32_t stipple_player_points_drawn(const stipple_player* player);
+/* Paintstrokes the last frame drew and the triangles they were tessellated into. */
+uint32_t stipple_player_strokes_drawn(const stipple_player* player);
+uint32_t stipple_player_stroke_triangles(const stipple_player* player);
 /* GL errors reported since create when desc.check_gl_errors is 1 (always 0 otherwise). Any
  * non-zero count is a bug in the player or a broken context; stipple-play --check-gl names
  * the pass of the first one. */

@@ -85,6 +85,14 @@ stipple::FrameConfig frame_config_of(const stipple_player_desc& d) {
         for (int k = 0; k < 3; ++k)
             c.background[k] = float((d.background_rgb >> (16 - 8 * k)) & 0xFF) / 255.0f;
     c.check_gl_errors = d.check_gl_errors != 0;
+    c.strokes = !d.no_strokes;
+    // AUTO (0) is -1 here; an unknown enum value maps outside [-1, 2] and fails the check.
+    c.stroke_quality = d.stroke_quality >= 0 && d.stroke_quality <= 3 ? d.stroke_quality - 1 : 99;
+    c.stroke_tol_theta = d.stroke_tol_theta;
+    c.stroke_tol_z = d.stroke_tol_z;
+    c.stroke_lod_px = d.stroke_lod_px;
+    if (d.stroke_nudge != 0.0f) c.stroke_nudge = d.stroke_nudge < 0.0f ? 0.0f : d.stroke_nudge;
+    c.stroke_vertex_budget = d.stroke_vertex_budget < 0 ? 1u : uint32_t(d.stroke_vertex_budget);
     return c;
 }
 
@@ -109,6 +117,13 @@ void desc_of(const stipple::FrameConfig& c, stipple_player_desc* d) {
         d->background_rgb |= uint32_t(std::lround(c.background[k] * 255.0f)) << (16 - 8 * k);
     d->background_set = 1;
     d->check_gl_errors = c.check_gl_errors ? 1 : 0;
+    d->no_strokes = !c.strokes;
+    d->stroke_quality = c.stroke_quality + 1;
+    d->stroke_tol_theta = c.stroke_tol_theta;
+    d->stroke_tol_z = c.stroke_tol_z;
+    d->stroke_lod_px = c.stroke_lod_px;
+    d->stroke_nudge = c.stroke_nudge > 0.0f ? c.stroke_nudge : -1.0f;
+    d->stroke_vertex_budget = int(c.stroke_vertex_budget);
 }
 
 }  // namespace
@@ -152,6 +167,10 @@ uint32_t stipple_asset_point_count(const stipple_asset* a) {
 
 uint32_t stipple_asset_clip_count(const stipple_asset* a) {
     return a ? a->asset.clip_count : 0;
+}
+
+uint32_t stipple_asset_stroke_count(const stipple_asset* a) {
+    return a ? a->asset.strokes.stroke_count : 0;
 }
 
 const char* stipple_asset_clip_name(const stipple_asset* a, uint32_t clip) {
@@ -223,6 +242,14 @@ void stipple_player_read_rgba(stipple_player* p, uint8_t* rgba) {
 
 uint32_t stipple_player_points_drawn(const stipple_player* p) {
     return p ? p->pipeline.points_drawn : 0;
+}
+
+uint32_t stipple_player_strokes_drawn(const stipple_player* p) {
+    return p ? p->pipeline.strokes.strokes_drawn : 0;
+}
+
+uint32_t stipple_player_stroke_triangles(const stipple_player* p) {
+    return p ? p->pipeline.strokes.stats.triangles : 0;
 }
 
 uint32_t stipple_player_gl_errors(const stipple_player* p) {

@@ -54,4 +54,22 @@ inline glm::vec3 frame_direction(const SurfaceFrame& f, const glm::vec3& a) {
     return a.x * f.x + a.y * f.y + a.z * f.z;
 }
 
+// Decodes one stored control point (quantised colour and opacities) with its position and
+// global normal already placed; the helpers below call it.
+StrokePoint decode_stroke_point(const format::StrokePointRecord& r, const glm::vec3& position,
+                                const glm::vec3& global_normal);
+
+// This frame's control points of every stroke, in eye space, indexed like strokes.points.
+// `positions`/`normals` are the posed mesh's vertices (3 floats each, the space `view` takes
+// to eye space); `skin_matrices` the posed joints (joint anchors; may be null without any).
+// Surface anchors use surface_frame on the posed host triangle.
+void anchor_strokes(const StrokesView& strokes, const MeshView& mesh, const float* positions,
+                    const float* normals, const glm::mat4* skin_matrices, const glm::mat4& view,
+                    StrokePoint* out_points);
+
+// The point a stroke is anchored at this frame in the posed mesh's space: a surface stroke's
+// frame origin, the first control point otherwise (before the view transform).
+glm::vec3 stroke_root(const StrokesView& strokes, uint32_t stroke, const MeshView& mesh,
+                      const float* positions, const float* normals, const glm::mat4* skin_matrices);
+
 }  // namespace stipple

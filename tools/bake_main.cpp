@@ -11,12 +11,15 @@
 
 #include "bake/asset_writer.h"
 #include "bake/atomic_file.h"
+#include "bake/fur.h"
 #include "bake/point_hierarchy.h"
 #include "bake/scene_import.h"
 #include "bake/scene_orientation.h"
+#include "bake/stroke_json.h"
 #include "bake/vertex_normals.h"
 #include "runtime/asset.h"
 #include "runtime/asset_format.h"
+#include "runtime/asset_limits.h"
 #include "tools/bake_log.h"
 #include "tools/cli_options.h"
 #include "tools/json_line.h"
@@ -43,6 +46,19 @@ const char* kUsage =
     "                   points on double-sided triangles draw from both sides (default auto)\n"
     "  --up A           y | z: the input's up axis; z turns a Z-up mesh upright (+Z becomes\n"
     "                   +Y). Default y (glTF is Y-up by its spec; pass z for Z-up PLY/STL)\n"
+    "  --fur N          paintstroke fur: one hair on each of the hierarchy's first N points\n"
+    "                   (coarse to fine, so a prefix is a level of detail), N in\n"
+    "                   [0, 4194304]; more than --points gives one per point (default 0)\n"
+    "  --fur-length L   hair length, object units, in (0, 250000] (default 3% of the\n"
+    "                   bounding-box diagonal, each hair 0.85-1.15 times that)\n"
+    "  --fur-radius R   hair radius at the root, in (0, 250000]; the tip is 0.2 R\n"
+    "                   (default L / 25)\n"
+    "  --fur-comb X,Y,Z object-space direction the hair bends toward (its projection on the\n"
+    "                   surface; the tip turns by that projection's length in radians, at\n"
+    "                   most 1.5), each in [-1000, 1000] (default 0,-1,0: gravity)\n"
+    "  --fur-curl C     twist of the bend around the normal, radians per object unit, in\n"
+    "                   [-1000000, 1000000] (default 0)\n"
+    "  --strokes F      paintstrokes from a JSON file (docs/strokes.md), after any fur\n"
     "  --quiet          no warnings and no summary; the progress bar (on stderr, for bakes over\n"
     "                   a second) shows only when stderr is a terminal (default off)\n"
     "  -h, --help       this text\n";
@@ -57,12 +73,56 @@ struct Options {
     bool quiet = false;
     enum class Sides { automatic, on, off } double_sided = Sides::automatic;
     uint32_t up_axis = stipple::format::kUpY;
+    stipple::bake::FurConfig fur;
+    bool fur_options = false;  // any --fur-* given
+    std::string strokes;
 };
 
 stipple::cli::Parser g_parser("stipple-bake", kUsage);
 
 [[noreturn]] void die(const std::string& message) {
     g_parser.fail(message);
+}
+
+// A number in (0, 250000]: fur length and radius.
+float positive_length(stipple::cli::Parser& p, const std::string& name, const std::string& v) {
+    const double x = p.number_value(name, v, 0, 250000);
+    if (!(x > 0)) p.bad_value(name, "a number in (0, 250000]", v);
+    return float(x);
+}
+
+// --fur, --fur-length, --fur-radius, --fur-comb, --fur-curl, --strokes.
+void add_stroke_options(stipple::cli::Parser& p, Options* o) {
+    p.integer("--fur", 0, stipple::limits::kMaxStrokes, &o->fur.count)
+        .custom("--fur-length",
+                [&p, o](const std::string& name, const std::string& v) {
+                    o->fur.length = positive_length(p, name, v);
+                    o->fur_options = true;
+                })
+        .custom("--fur-radius",
+                [&p, o](const std::string& name, const std::string& v) {
+                    o->fur.radius = positive_length(p, name, v);
+                    o->fur_options = true;
+                })
+        .custom("--fur-comb",
+                [&p, o](const std::string& name, const std::string& v) {
+                    size_t at = 0;
+                    for (int k = 0; k < 3; ++k) {
+                        const size_t comma = k < 2 ? v.find(',', at) : v.size();
+                        if (comma == std::string::npos || (k == 2 && v.find(',', at) != v.npos))
+                            p.bad_value(name, "three numbers X,Y,Z", v);
+                        o->fur.comb[k] = float(p.number_value(
+                            name + " component", v.substr(at, comma - at), -1000, 1000));
+                        at = comma + 1;
+                    }
+                    o->fur_options = true;
+                })
+        .custom("--fur-curl",
+                [&p, o](const std::string& name, const std::string& v) {
+                    o->fur.curl = float(p.number_value(name, v, -1e6, 1e6));
+                    o->fur_options = true;
+                })
+        .text("--strokes", &o->strokes);
 }
 
 Options parse(int argc, char** argv) {
@@ -100,7 +160,10 @@ Options parse(int argc, char** argv) {
                         p.bad_value(name, "y or z", v);
                 })
         .flag("--quiet", &o.quiet);
+    add_stroke_options(p, &o);
     p.parse(argc, argv);
+    if (o.fur_options && o.fur.count == 0)
+        die("--fur-length, --fur-radius, --fur-comb and --fur-curl need --fur N");
     if (o.input.empty()) die("no input file (see --help)");
     if (o.output.empty()) die("no output file: pass -o OUT.stip");
     return o;
@@ -197,6 +260,11 @@ void print_summary(const Options& o, const stipple::bake::RawScene& scene,
     j["up"] = o.up_axis == stipple::format::kUpZ ? "z" : "y";
     j["double_sided_triangles"] = check.sides.triangle_count;
     j["bytes_per_point"] = fixed(double(point_bytes) / n, 2);
+    if (check.strokes.stroke_count > 0) {
+        j["strokes"] = check.strokes.stroke_count;
+        j["stroke_points"] = check.strokes.point_count;
+        j["stroke_bytes"] = check.section_size[stipple::kSectionStrokes];
+    }
     j["seconds"] = fixed(seconds, 3);
     stipple::cli::print_json(j);
 }
@@ -218,6 +286,27 @@ stipple::bake::RawScene import(const Options& o) {
     return scene;
 }
 
+// The asset's paintstrokes: fur first (its roots follow the hierarchy), then --strokes.
+stipple::bake::BakedStrokes all_strokes(const Options& o, const stipple::bake::RawScene& scene,
+                                        const stipple::bake::PointHierarchy& points,
+                                        const stipple::bake::BakedStrokes& explicit_strokes) {
+    using namespace stipple::bake;
+    BakedStrokes strokes;
+    if (o.fur.count > 0) {
+        const BakeError fur = bake_fur(scene, points, o.fur, &strokes);
+        if (!fur.ok()) die(o.input + ": " + fur.message);
+    }
+    append_strokes(explicit_strokes, &strokes);
+    if (strokes.points.size() > stipple::limits::kMaxStrokePoints ||
+        strokes.strokes.size() > stipple::limits::kMaxStrokes)
+        die("fur and --strokes together have " + std::to_string(strokes.strokes.size()) +
+            " strokes and " + std::to_string(strokes.points.size()) +
+            " control points, over the limits of " + std::to_string(stipple::limits::kMaxStrokes) +
+            " and " + std::to_string(stipple::limits::kMaxStrokePoints));
+
+    return strokes;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -237,6 +326,11 @@ int main(int argc, char** argv) {
     // summarized below, one line per distinct message.
     stipple::tools::LibraryLog log;
     const RawScene scene = import(o);
+    BakedStrokes explicit_strokes;  // read before the hierarchy is built: errors come early
+    if (!o.strokes.empty()) {
+        const BakeError read = load_strokes_json(o.strokes, scene, &explicit_strokes);
+        if (!read.ok()) die(read.message);
+    }
     on_progress("import", 1, &progress);
 
     HierarchyConfig config;
@@ -259,8 +353,10 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "warning: only %zu points could be built\n", points.size());
     }
 
+    const BakedStrokes strokes = all_strokes(o, scene, points, explicit_strokes);
+
     on_progress("encode", 0, &progress);
-    const std::vector<uint8_t> bytes = encode_asset(scene, points);
+    const std::vector<uint8_t> bytes = encode_asset(scene, points, strokes);
     on_progress("verify", 0, &progress);
     // Read the asset back with the runtime's validating loader before writing it, so a
     // bake never leaves an asset the runtime would refuse.

@@ -81,13 +81,33 @@ Json bounds(const stipple::Asset& a) {
     return out;
 }
 
+// Paintstrokes (STRK): counts, anchors, how many sit on a hierarchy point (fur).
+Json strokes(const stipple::Asset& a) {
+    const stipple::StrokesView& v = a.strokes;
+    uint32_t anchors[3] = {}, rooted = 0;
+    for (uint32_t i = 0; i < v.stroke_count; ++i) {
+        if (v.strokes[i].anchor < 3) ++anchors[v.strokes[i].anchor];
+        rooted += v.strokes[i].root_point != stipple::format::kNoRootPoint;
+    }
+    Json j;
+    j["strokes"] = v.stroke_count;
+    j["control_points"] = v.point_count;
+    j["max_points_per_stroke"] = v.max_points_per_stroke;
+    j["surface"] = anchors[stipple::format::kAnchorSurface];
+    j["object"] = anchors[stipple::format::kAnchorObject];
+    j["joint"] = anchors[stipple::format::kAnchorJoint];
+    j["rooted"] = rooted;
+    j["bytes"] = a.section_size[stipple::kSectionStrokes];
+    return j;
+}
+
 // Counts and sizes of the asset's sections.
 Json contents(const std::string& path, const stipple::Asset& a) {
     const stipple::PointsView& p = a.points;
     size_t mesh_side = 0;
     for (int s : {stipple::kSectionMesh, stipple::kSectionSkin, stipple::kSectionClips,
                   stipple::kSectionEdges, stipple::kSectionMorph, stipple::kSectionBounds,
-                  stipple::kSectionSides})
+                  stipple::kSectionSides, stipple::kSectionStrokes})
         mesh_side += a.section_size[s];
     Json j;
     j["asset"] = path;
@@ -111,6 +131,7 @@ Json contents(const std::string& path, const stipple::Asset& a) {
     j["up"] = !a.bounds.present ? "unknown" : a.bounds.up_axis == stipple::format::kUpZ ? "z" : "y";
     j["double_sided_triangles"] = a.sides.triangle_count;
     if (a.bounds.present) j["bounds"] = bounds(a);
+    if (a.strokes.stroke_count > 0) j["strokes"] = strokes(a);
     return j;
 }
 

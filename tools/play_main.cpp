@@ -17,6 +17,7 @@
 #include "tools/cli_options.h"
 #include "tools/image_write.h"
 #include "tools/json_line.h"
+#include "tools/play_outputs.h"
 
 namespace {
 
@@ -100,6 +101,20 @@ const std::string kUsage =
     "  --line-width PX         silhouette line width (default " +
     g(kDefaults.line_width) + ", " + range(kLimits.line_width) +
     ")\n"
+    "  --no-strokes            do not draw the asset's paintstrokes (STRK section)\n"
+    "  --stroke-quality Q      paintstroke breadthwise quality 0, 1, 2 or auto (GI'98 §4.3;\n"
+    "                          default auto: by projected radius)\n"
+    "  --stroke-tolerance T[,Z]  lengthwise tolerances in pixels: tol_theta (Position\n"
+    "                          Constraint I) and tol_z (II and radius; default " +
+    g(kDefaults.stroke_tol_theta) + "," + g(kDefaults.stroke_tol_z) + ", each " +
+    range(kLimits.stroke_tol_theta) +
+    ")\n"
+    "  --stroke-lod PX         draw a stroke only where its root point's relevance radius\n"
+    "                          projects to >= PX pixels (default 0: all; " +
+    range(kLimits.stroke_lod_px) +
+    ")\n"
+    "  --roots-out             also write roots_NNNN.csv (stroke,x,y,surface_x,surface_y:\n"
+    "                          each stroke's drawn root and its host surface point, pixels)\n"
     "  --dots-out              also write dots_NNNN.csv (id,x,y,size per drawn dot)\n"
     "  --mask-out              also write mask_NNNN.png: white where the mesh covers the\n"
     "                          pixel, black elsewhere (the object mask of stipple-measure)\n"
@@ -136,6 +151,10 @@ struct Options {
     bool dots_out = false, png = true, apng = true, stats = false;
     bool mask_out = false;
     bool check_gl = false;
+    bool strokes = kDefaults.strokes, roots_out = false;
+    int stroke_quality = kDefaults.stroke_quality;
+    double stroke_tol_theta = kDefaults.stroke_tol_theta, stroke_tol_z = kDefaults.stroke_tol_z;
+    double stroke_lod = kDefaults.stroke_lod_px;
     long rss_every = 0;  // > 0: DIR/rss.csv gets a row every rss_every frames
 };
 
@@ -156,6 +175,19 @@ void parse_mix(const std::string& option, const std::string& v, Options* o) {
     o->mix_amount =
         blend ? g_parser.number_value(option + " weight", v.substr(colon + 1), 0, 1)
               : g_parser.number_value(option + " seconds", v.substr(colon + 1), 0.001, 1e4);
+}
+
+// --stroke-tolerance THETA[,Z]: GI'98 tol_theta and tol_z in pixels (Z defaults to half THETA).
+void parse_tolerance(const std::string& option, const std::string& v, Options* o) {
+    const stipple::Setting<float>& t = kLimits.stroke_tol_theta;
+    const size_t comma = v.find(',');
+    o->stroke_tol_theta =
+        g_parser.number_value(option + " tol_theta", v.substr(0, comma), t.min, t.max);
+    o->stroke_tol_z =
+        comma == std::string::npos
+            ? std::max(0.5 * o->stroke_tol_theta, double(t.min))
+            : g_parser.number_value(option + " tol_z", v.substr(comma + 1),
+                                    kLimits.stroke_tol_z.min, kLimits.stroke_tol_z.max);
 }
 
 // What is played and how the camera sees it.
@@ -206,6 +238,14 @@ void add_render_options(stipple::cli::Parser& p, Options& o) {
                  kLimits.refinement_budget.max, &o.refinement_budget)
         .flag("--no-silhouettes", &o.silhouettes, false)
         .number("--line-width", kLimits.line_width.min, kLimits.line_width.max, &o.line_width)
+        .flag("--no-strokes", &o.strokes, false)
+        .choice("--stroke-quality",
+                {std::pair<const char*, int>{"auto", -1}, {"0", 0}, {"1", 1}, {"2", 2}},
+                &o.stroke_quality)
+        .custom("--stroke-tolerance",
+                [&o](const std::string& n, const std::string& v) { parse_tolerance(n, v, &o); })
+        .number("--stroke-lod", kLimits.stroke_lod_px.min, kLimits.stroke_lod_px.max, &o.stroke_lod)
+        .flag("--roots-out", &o.roots_out)
         .flag("--dots-out", &o.dots_out)
         .flag("--mask-out", &o.mask_out)
         .flag("--no-png", &o.png, false)
@@ -233,33 +273,6 @@ std::string frame_path(const Options& o, const char* stem, long frame, const cha
     char name[64];
     std::snprintf(name, sizeof(name), "/%s_%04ld.%s", stem, frame, ext);
     return o.out + name;
-}
-
-// Writes the dots the last frame shows (stipple::pipeline_visible_dots) as CSV.
-bool write_dots(const stipple::Pipeline& p, const float* depth, stipple::VisibleDot* scratch,
-                const std::string& path) {
-    FILE* f = std::fopen(path.c_str(), "w");
-    if (!f) return false;
-    std::fputs("id,x,y,size\n", f);
-    const uint32_t n = stipple::pipeline_visible_dots(p, depth, scratch, p.point_capacity);
-    for (uint32_t i = 0; i < n; ++i)
-        std::fprintf(f, "%llu,%.2f,%.2f,%.3f\n", static_cast<unsigned long long>(scratch[i].id),
-                     double(scratch[i].x), double(scratch[i].y), double(scratch[i].size));
-    return std::fclose(f) == 0;
-}
-
-// Writes the object mask of the last frame from the mesh pass's depth (bottom row first, 1 =
-// background): white where depth < 1, black elsewhere, top row first like the frame PNGs.
-// `rgba` is scratch of width * height * 4 bytes.
-bool write_mask(const float* depth, int w, int h, uint8_t* rgba, const std::string& path,
-                std::string* error) {
-    const size_t pixels = size_t(w) * size_t(h);
-    for (size_t i = 0; i < pixels; ++i) {
-        const uint8_t v = depth[i] < 1.0f ? 255 : 0;
-        rgba[i * 4] = rgba[i * 4 + 1] = rgba[i * 4 + 2] = v;
-        rgba[i * 4 + 3] = 255;
-    }
-    return stipple::image::write_png(path.c_str(), w, h, rgba, /*bottom_up=*/true, error);
 }
 
 // The played clip (-1: the rest pose) and the second clip of --blend / --crossfade (-1: none).
@@ -307,6 +320,11 @@ stipple::FrameConfig pipeline_config(const Options& o, const Clips& clips) {
     pc.skinning = o.dqs ? stipple::anim::Skinning::dqs : stipple::anim::Skinning::lbs;
     pc.line_width = float(o.line_width);
     pc.check_gl_errors = o.check_gl;
+    pc.strokes = o.strokes;
+    pc.stroke_quality = o.stroke_quality;
+    pc.stroke_tol_theta = float(o.stroke_tol_theta);
+    pc.stroke_tol_z = float(o.stroke_tol_z);
+    pc.stroke_lod_px = float(o.stroke_lod);
     std::memcpy(pc.background, o.background, sizeof(pc.background));
     return pc;
 }
@@ -316,6 +334,7 @@ struct Outputs {
     std::unique_ptr<uint8_t[]> rgba;
     std::unique_ptr<float[]> depth_scratch, depth;
     std::unique_ptr<stipple::VisibleDot[]> dot_scratch;
+    std::unique_ptr<stipple::StrokeRootSample[]> root_scratch;
     std::unique_ptr<uint8_t[]> mask_rgba;
     stipple::image::ApngWriter apng;
 };
@@ -329,6 +348,9 @@ void open_outputs(const Options& o, const stipple::Pipeline& pipeline, Outputs* 
         if (o.dots_out) out->dot_scratch.reset(new stipple::VisibleDot[pipeline.point_capacity]);
     }
     if (o.mask_out) out->mask_rgba.reset(new uint8_t[pixels * 4]);
+    if (o.roots_out)
+        out->root_scratch.reset(
+            new stipple::StrokeRootSample[std::max(pipeline.asset->strokes.stroke_count, 1u)]);
     int fps_num = int(std::lround(o.fps * 1000)), fps_den = 1000;
     while (fps_num > 65535) fps_num /= 10, fps_den /= 10;
     std::string error;
@@ -348,11 +370,16 @@ void write_frame(const Options& o, long f, stipple::Pipeline* pipeline, Outputs*
     if (o.dots_out || o.mask_out)
         stipple::renderer_read_depth(&pipeline->renderer, out->depth_scratch.get(),
                                      out->depth.get());
-    if (o.dots_out && !write_dots(*pipeline, out->depth.get(), out->dot_scratch.get(),
-                                  frame_path(o, "dots", f, "csv")))
+    if (o.dots_out &&
+        !stipple::play::write_dots(*pipeline, out->depth.get(), out->dot_scratch.get(),
+                                   frame_path(o, "dots", f, "csv")))
         die("cannot write dots file in '" + o.out + "'");
-    if (o.mask_out && !write_mask(out->depth.get(), o.width, o.height, out->mask_rgba.get(),
-                                  frame_path(o, "mask", f, "png"), &error))
+    if (o.roots_out && !stipple::play::write_roots(*pipeline, out->root_scratch.get(),
+                                                   frame_path(o, "roots", f, "csv")))
+        die("cannot write roots file in '" + o.out + "'");
+    if (o.mask_out &&
+        !stipple::play::write_mask(out->depth.get(), o.width, o.height, out->mask_rgba.get(),
+                                   frame_path(o, "mask", f, "png"), &error))
         die(error);
 }
 
@@ -473,14 +500,20 @@ void print_stats(const Options& o, const stipple::Asset& asset, const Clips& cli
     j["refinement_budget_scale"] = fixed(t.budget_scale, 3);
     j["ms_per_frame"] = fixed(t.frame_ms / n, 3);
     const std::pair<const char*, double> stages[] = {
-        {"sample", t.times.sample},         {"skin", t.times.skin},
-        {"place", t.times.place},           {"relevance", t.times.relevance},
-        {"refine", t.times.refine},         {"size", t.times.size},
-        {"silhouette", t.times.silhouette}, {"draw", t.times.draw},
+        {"sample", t.times.sample},         {"skin", t.times.skin},       {"place", t.times.place},
+        {"relevance", t.times.relevance},   {"refine", t.times.refine},   {"size", t.times.size},
+        {"silhouette", t.times.silhouette}, {"strokes", t.times.strokes}, {"draw", t.times.draw},
         {"readback", t.times.readback}};
     stipple::cli::Json per_stage;
     for (const auto& stage : stages) per_stage[stage.first] = fixed(stage.second / n, 3);
     j["ms_per_stage"] = per_stage;
+    if (asset.strokes.stroke_count > 0) {
+        const stipple::StrokeStage& s = pipeline.strokes;
+        j["strokes_total"] = asset.strokes.stroke_count;
+        j["strokes_drawn"] = s.strokes_drawn;  // these three: the last frame
+        j["stroke_segments"] = s.stats.segments;
+        j["stroke_triangles"] = s.stats.triangles;
+    }
     if (o.check_gl) j["gl_errors"] = stipple::pipeline_gl_errors(pipeline).count;
     stipple::cli::print_json(j);
 }

@@ -1,0 +1,48 @@
+#include "tools/play_outputs.h"
+
+#include <cstdio>
+
+#include "tools/image_write.h"
+
+namespace stipple::play {
+
+// Writes the dots the last frame shows (pipeline_visible_dots) as CSV.
+bool write_dots(const Pipeline& p, const float* depth, VisibleDot* scratch,
+                const std::string& path) {
+    FILE* f = std::fopen(path.c_str(), "w");
+    if (!f) return false;
+    std::fputs("id,x,y,size\n", f);
+    const uint32_t n = pipeline_visible_dots(p, depth, scratch, p.point_capacity);
+    for (uint32_t i = 0; i < n; ++i)
+        std::fprintf(f, "%llu,%.2f,%.2f,%.3f\n", static_cast<unsigned long long>(scratch[i].id),
+                     double(scratch[i].x), double(scratch[i].y), double(scratch[i].size));
+    return std::fclose(f) == 0;
+}
+
+// Writes the object mask of the last frame from the mesh pass's depth (bottom row first, 1 =
+// background): white where depth < 1, black elsewhere, top row first like the frame PNGs.
+// `rgba` is scratch of width * height * 4 bytes.
+bool write_mask(const float* depth, int w, int h, uint8_t* rgba, const std::string& path,
+                std::string* error) {
+    const size_t pixels = size_t(w) * size_t(h);
+    for (size_t i = 0; i < pixels; ++i) {
+        const uint8_t v = depth[i] < 1.0f ? 255 : 0;
+        rgba[i * 4] = rgba[i * 4 + 1] = rgba[i * 4 + 2] = v;
+        rgba[i * 4 + 3] = 255;
+    }
+    return image::write_png(path.c_str(), w, h, rgba, /*bottom_up=*/true, error);
+}
+
+bool write_roots(const Pipeline& p, StrokeRootSample* scratch, const std::string& path) {
+    FILE* f = std::fopen(path.c_str(), "w");
+    if (!f) return false;
+    std::fputs("stroke,x,y,surface_x,surface_y\n", f);
+    const uint32_t n = pipeline_stroke_roots(p, scratch, p.asset->strokes.stroke_count);
+    for (uint32_t i = 0; i < n; ++i)
+        std::fprintf(f, "%u,%.3f,%.3f,%.3f,%.3f\n", scratch[i].stroke, double(scratch[i].x),
+                     double(scratch[i].y), double(scratch[i].surface_x),
+                     double(scratch[i].surface_y));
+    return std::fclose(f) == 0;
+}
+
+}  // namespace stipple::play
