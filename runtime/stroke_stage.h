@@ -48,7 +48,10 @@ struct StrokeFrameInput {
 // Re-reads the settings pipeline_set_view may change (quality, tolerances, LOD).
 void stroke_stage_configure(StrokeStage* s, const FrameConfig& config);
 
-// CPU half: anchors, tessellates and sorts. Allocates nothing.
+// CPU half: anchors, tessellates and sorts. Allocates nothing. When the vertex budget
+// (FrameConfig::stroke_vertex_budget) binds, the stroke that does not fit and every stroke
+// after it are left out of this frame (strokes are stored coarse to fine, so what is drawn is
+// the coarser part of the fur) and mesh.overflow says so.
 void stroke_stage_update(StrokeStage* s, const Asset& asset, const StrokeFrameInput& in,
                          float lod_px);
 

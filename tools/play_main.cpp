@@ -113,6 +113,12 @@ const std::string kUsage =
     "                          projects to >= PX pixels (default 0: all; " +
     range(kLimits.stroke_lod_px) +
     ")\n"
+    "  --stroke-budget N       tessellated stroke vertices per frame (default " +
+    std::to_string(kDefaults.stroke_vertex_budget) + ", " +
+    std::to_string(kLimits.stroke_vertex_budget.min) + ".." +
+    std::to_string(kLimits.stroke_vertex_budget.max) +
+    "; 48 bytes each);\n"
+    "                          strokes past it are left out (--stats: stroke_budget_full)\n"
     "  --roots-out             also write roots_NNNN.csv (stroke,x,y,surface_x,surface_y:\n"
     "                          each stroke's drawn root and its host surface point, pixels)\n"
     "  --dots-out              also write dots_NNNN.csv (id,x,y,size per drawn dot)\n"
@@ -155,6 +161,7 @@ struct Options {
     int stroke_quality = kDefaults.stroke_quality;
     double stroke_tol_theta = kDefaults.stroke_tol_theta, stroke_tol_z = kDefaults.stroke_tol_z;
     double stroke_lod = kDefaults.stroke_lod_px;
+    long stroke_budget = long(kDefaults.stroke_vertex_budget);
     long rss_every = 0;  // > 0: DIR/rss.csv gets a row every rss_every frames
 };
 
@@ -245,6 +252,8 @@ void add_render_options(stipple::cli::Parser& p, Options& o) {
         .custom("--stroke-tolerance",
                 [&o](const std::string& n, const std::string& v) { parse_tolerance(n, v, &o); })
         .number("--stroke-lod", kLimits.stroke_lod_px.min, kLimits.stroke_lod_px.max, &o.stroke_lod)
+        .integer("--stroke-budget", long(kLimits.stroke_vertex_budget.min),
+                 long(kLimits.stroke_vertex_budget.max), &o.stroke_budget)
         .flag("--roots-out", &o.roots_out)
         .flag("--dots-out", &o.dots_out)
         .flag("--mask-out", &o.mask_out)
@@ -325,6 +334,7 @@ stipple::FrameConfig pipeline_config(const Options& o, const Clips& clips) {
     pc.stroke_tol_theta = float(o.stroke_tol_theta);
     pc.stroke_tol_z = float(o.stroke_tol_z);
     pc.stroke_lod_px = float(o.stroke_lod);
+    pc.stroke_vertex_budget = uint32_t(o.stroke_budget);
     std::memcpy(pc.background, o.background, sizeof(pc.background));
     return pc;
 }
@@ -513,6 +523,7 @@ void print_stats(const Options& o, const stipple::Asset& asset, const Clips& cli
         j["strokes_drawn"] = s.strokes_drawn;  // these three: the last frame
         j["stroke_segments"] = s.stats.segments;
         j["stroke_triangles"] = s.stats.triangles;
+        j["stroke_budget_full"] = s.mesh.overflow;  // strokes were left out: raise the budget
     }
     if (o.check_gl) j["gl_errors"] = stipple::pipeline_gl_errors(pipeline).count;
     stipple::cli::print_json(j);

@@ -113,3 +113,29 @@ long c_api_closeup_dark_pixels(const char* asset_path, stipple_get_proc_fn get_p
     stipple_asset_destroy(asset);
     return dark;
 }
+
+/* Draws frame `time` of clip 0 of a furry asset with the stroke settings given and returns the
+ * strokes drawn (*triangles: their triangles), or -1 on error. */
+long c_api_strokes_drawn(const char* asset_path, stipple_get_proc_fn get_proc, int no_strokes,
+                         int quality, uint32_t* triangles) {
+    stipple_asset* asset = NULL;
+    stipple_player* player = NULL;
+    stipple_player_desc desc;
+    long drawn;
+    memset(&desc, 0, sizeof(desc));
+    desc.width = 320;
+    desc.height = 240;
+    desc.no_strokes = no_strokes;
+    desc.stroke_quality = quality;
+    desc.stroke_vertex_budget = 1 << 20; /* quality 2 fur needs more than the default */
+    desc.check_gl_errors = 1;
+    desc.get_proc_address = get_proc;
+    if (open_player(asset_path, &desc, &asset, &player) != 0) return -1;
+    stipple_player_draw(player, 0, 0.5f);
+    drawn = (long)stipple_player_strokes_drawn(player);
+    *triangles = stipple_player_stroke_triangles(player);
+    if (stipple_player_gl_errors(player) != 0) drawn = -2;
+    stipple_player_destroy(player);
+    stipple_asset_destroy(asset);
+    return drawn;
+}

@@ -14,6 +14,8 @@ extern "C" long c_api_render_dark_pixels(const char* asset_path, stipple_get_pro
                                          float time, uint32_t* points_drawn, uint32_t* gl_errors);
 extern "C" long c_api_closeup_dark_pixels(const char* asset_path, stipple_get_proc_fn get_proc,
                                           int refinement_budget);
+extern "C" long c_api_strokes_drawn(const char* asset_path, stipple_get_proc_fn get_proc,
+                                    int no_strokes, int quality, uint32_t* triangles);
 
 namespace {
 
@@ -80,6 +82,37 @@ TEST(CApi, ErrorsAreCodesWithAMessage) {
     EXPECT_EQ(stipple_player_create(nullptr, &desc, &player), STIPPLE_ERROR_INVALID_ARGUMENT);
     EXPECT_EQ(stipple_asset_find_clip(nullptr, "walk"), -1);
     EXPECT_EQ(stipple_asset_clip_name(nullptr, 0), nullptr);
+}
+
+// Paintstroke switches through the C API: strokes draw by default, no_strokes turns them
+// off, quality 0 / 2 change the tessellation (2^q polygons per side), an unknown quality is
+// refused with a named error.
+TEST(CApi, PaintstrokeSwitches) {
+    const std::string asset =
+        baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 20000 --fur 3000");
+    ASSERT_FALSE(asset.empty());
+    HeadlessGl gl;
+    std::string error;
+    ASSERT_TRUE(gl.open(&error)) << error;
+    const stipple_get_proc_fn proc = stipple::platform::proc_loader(gl.context());
+    uint32_t auto_tris = 0, q0 = 0, q2 = 0, none = 0;
+    EXPECT_EQ(c_api_strokes_drawn(asset.c_str(), proc, 0, STIPPLE_STROKE_QUALITY_AUTO, &auto_tris),
+              3000)
+        << stipple_last_error();
+    EXPECT_EQ(c_api_strokes_drawn(asset.c_str(), proc, 0, STIPPLE_STROKE_QUALITY_0, &q0), 3000);
+    EXPECT_EQ(c_api_strokes_drawn(asset.c_str(), proc, 0, STIPPLE_STROKE_QUALITY_2, &q2), 3000);
+    EXPECT_EQ(c_api_strokes_drawn(asset.c_str(), proc, 1, STIPPLE_STROKE_QUALITY_AUTO, &none), 0);
+    EXPECT_EQ(none, 0u);
+    EXPECT_GT(q0, 10000u);
+    EXPECT_GT(q2, 3 * q0);  // 8 triangles a segment instead of 2 (caps aside)
+    EXPECT_GE(auto_tris, q0);
+    EXPECT_LE(auto_tris, q2);
+
+    stipple_player_desc bad = {};
+    bad.stroke_quality = 7;
+    stipple_player_desc out;
+    EXPECT_EQ(stipple_player_desc_resolve(&bad, &out), STIPPLE_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::strstr(stipple_last_error(), "stroke_quality"), nullptr) << stipple_last_error();
 }
 
 }  // namespace
