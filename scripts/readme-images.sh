@@ -4,6 +4,8 @@
 #   walk_anim.png  the walk as an animated PNG (320x240, 30 frames)
 #   zoom_anim.png  a close-up from zoom 1 to 16 (240x180, 24 frames): the hierarchy continued
 #                  at run time keeps the tone (docs/tone.md)
+#   fur_anim.png   CesiumMan with 3,000 paintstroke hairs walking (320x240, 30 frames; GI'98)
+#   torus.png      the sketch's torus of 1,250 strokes (320x240)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=build/bin
@@ -21,4 +23,14 @@ cp "$TMP/walk_anim/anim.png" "$OUT/walk_anim.png"
 "$BIN/stipple-play" "$TMP/man.stip" --out "$TMP/zoom" --frames 24 --fps 12 --size 240x180 \
     --yaw -30 --pitch 10 --zoom 1 --zoom-to 16 --no-png --no-silhouettes
 cp "$TMP/zoom/anim.png" "$OUT/zoom_anim.png"
+"$BIN/stipple-bake" assets/CesiumMan/CesiumMan.glb -o "$TMP/fur.stip" --points 20000 --fur 3000 \
+    --quiet
+"$BIN/stipple-play" "$TMP/fur.stip" --out "$TMP/fur" --frames 30 --fps 30 --size 320x240 \
+    --yaw -60 --no-png
+cp "$TMP/fur/anim.png" "$OUT/fur_anim.png"
+"$BIN/stipple-bake" assets/torus.obj -o "$TMP/torus.stip" --points 20000 --fur 1250 \
+    --fur-length 0.35 --fur-radius 0.025 --fur-curl 2 --quiet
+"$BIN/stipple-play" "$TMP/torus.stip" --out "$TMP/torus" --frames 1 --size 320x240 --pitch 35 \
+    --no-apng
+cp "$TMP/torus/frame_0000.png" "$OUT/torus.png"
 ls -l "$OUT"
