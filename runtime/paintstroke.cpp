@@ -136,6 +136,7 @@ bool emit_cap(const StrokeContext& c, const SectionCurve& s, uint32_t m, const f
               float t, float outward) {
     const RingFrame f = ring_frame(s, t);
     if (!f.tangent_defined || !(f.rad > 0.0f)) return true;
+    if (!(f.rad * c.camera.focal_px >= c.params->cap_min_radius_px * -f.pos.z)) return true;
     const glm::vec3 n = outward * glm::normalize(f.tangent);
     if (!(glm::dot(n, f.view) < 0.0f)) return true;  // disc faces away: hidden by the tube
     const int spokes = c.quality >= 2 ? kCapSpokes : kCapSpokes / 2;

@@ -64,6 +64,9 @@ struct TessellationParams {
     float nudge = 0.5f;    // §4.4: how far quality-0 edge normals move toward the centre
     int max_depth = 10;    // recursion limit of the lengthwise subdivision per section
     bool end_caps = true;  // close both ends (a fan over the end disc's visible half)
+    // A cap whose disc projects smaller than this radius is left out: it covers less than a
+    // pixel's worth beyond the segment's own end edge (fur tips, strokes far away).
+    float cap_min_radius_px = 1.0f;
     glm::vec3 light_eye{0.0f, 0.0f, 1.0f};  // unit, toward the light, eye space (§5.3's L)
 };
 

@@ -1,5 +1,6 @@
 #include "runtime/paintstroke_lengthwise.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace stipple {
@@ -32,10 +33,9 @@ namespace {
 
 // GI'98 eq. 1: the screen point on the outside boundary at t: pos_scr(t) displaced by the
 // normalised perpendicular of pos'_scr(t), scaled to the projected radius, on the side away
-// from pos''_scr(t) (which points toward the centre of curvature).
-glm::vec2 outside_point(const SectionCurve& s, float t, float focal_px) {
-    glm::vec2 p, d1, d2;
-    project_path(s, t, focal_px, &p, &d1, &d2);
+// from pos''_scr(t) (which points toward the centre of curvature). p, d1, d2: project_path at t.
+glm::vec2 outside_point(const SectionCurve& s, float t, float focal_px, const glm::vec2& p,
+                        const glm::vec2& d1, const glm::vec2& d2) {
     glm::vec2 n(d1.y, -d1.x);
     const float len = glm::length(n);
     if (!(len > 0.0f)) return p;
@@ -57,7 +57,8 @@ PositionConstraint1 position_constraint_1(const SectionCurve& s, float a, float 
     if (!(la > 0.0f) || !(lb > 0.0f)) return r;  // seen exactly along the path: no tangent
     r.defined = true;
     r.cos_theta = glm::dot(ta, tb) / (la * lb);
-    const glm::vec2 oa = outside_point(s, a, focal_px), ob = outside_point(s, b, focal_px);
+    const glm::vec2 oa = outside_point(s, a, focal_px, pa, ta, ca),
+                    ob = outside_point(s, b, focal_px, pb, tb, cb);
     const float d2 = glm::dot(ob - oa, ob - oa);
     r.d = std::sqrt(d2);
     const float tol2 = tol_theta_px * tol_theta_px;
@@ -94,12 +95,38 @@ bool segment_needs_split(const SectionCurve& s, float a, float b, const StrokeCa
     return !(rad_nonlinearity_px(s, a, b, f) < params.tol_z_px);
 }
 
-int section_inflection_points(const SectionCurve& s, float* t) {
+namespace {
+
+// How far (in pixels, perspective-scaled at the section's nearer end) a cubic with second
+// derivative q'' can stray from its chord over the whole section: |f - linear| <= max|f''| / 8
+// on [0, 1], and f'' is linear in t, so its largest magnitude is at an end.
+float deviation_bound_px(float d2_at_0, float d2_at_1, float scale) {
+    return scale * 0.125f * std::max(std::fabs(d2_at_0), std::fabs(d2_at_1));
+}
+
+}  // namespace
+
+int section_inflection_points(const SectionCurve& s, const StrokeCamera& camera,
+                              const TessellationParams& params, float* t) {
+    // GI'98 §4.2.3 splits at inflections because Constraint II and the radius constraint
+    // compare averages, which an S-shaped piece can balance out. A piece whose function
+    // cannot stray from its chord by the tolerance anywhere needs no split for that (its
+    // nonlinearity is below tol everywhere): skipping those keeps sub-pixel strokes (fur) at
+    // one segment per section. Likewise the projected path (orthographic, as §4.2.3 does):
+    // Constraint I tolerates a sagitta of about tol_theta / 8 pixels on any segment.
+    const float z_near = std::max(std::min(-s.p0.z, -s.p1.z), camera.near_z);
+    const float scale = camera.focal_px / z_near;
+    const glm::vec3 d2a = section_pos_d2(s, 0.0f), d2b = section_pos_d2(s, 1.0f);
     float c[kMaxInflectionSplits];
     int n = 0;
-    n += cubic_inflection(s.pos[2], 0.0f, 1.0f, c + n);  // pos_z'' = 0
-    n += cubic_inflection(s.rad, 0.0f, 1.0f, c + n);     // rad'' = 0
-    n += screen_inflections(s, 0.0f, 1.0f, c + n);       // projected path curvature = 0
+    if (deviation_bound_px(d2a.z, d2b.z, scale) >= params.tol_z_px)
+        n += cubic_inflection(s.pos[2], 0.0f, 1.0f, c + n);  // pos_z'' = 0
+    if (deviation_bound_px(section_rad_d2(s, 0.0f), section_rad_d2(s, 1.0f), scale) >=
+        params.tol_z_px)
+        n += cubic_inflection(s.rad, 0.0f, 1.0f, c + n);  // rad'' = 0
+    const float screen_d2a = glm::length(glm::vec2(d2a)), screen_d2b = glm::length(glm::vec2(d2b));
+    if (deviation_bound_px(screen_d2a, screen_d2b, scale) >= 0.125f * params.tol_theta_px)
+        n += screen_inflections(s, 0.0f, 1.0f, c + n);  // projected path curvature = 0
     // Insertion sort, dropping duplicates.
     int out = 0;
     for (int i = 0; i < n; ++i) {
@@ -126,7 +153,7 @@ void lengthwise_begin(LengthwiseState* st, const SectionCurve& s, const StrokeCa
     // GI'98 §4.2.3: split at the inflection points first; push the pieces last-first so they
     // pop in increasing t.
     float t[kMaxInflectionSplits + 2];
-    const int n = section_inflection_points(s, t + 1);
+    const int n = section_inflection_points(s, camera, params, t + 1);
     t[0] = 0.0f;
     t[n + 1] = 1.0f;
     st->inflection_splits = uint32_t(n);

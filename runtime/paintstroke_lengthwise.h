@@ -66,7 +66,11 @@ void lengthwise_begin(LengthwiseState* st, const SectionCurve& s, const StrokeCa
 bool lengthwise_next(LengthwiseState* st, float* a, float* b);
 
 // The §4.2.3 split points of a section in (0, 1), ascending and distinct (at most
-// kMaxInflectionSplits). Returns the count.
-int section_inflection_points(const SectionCurve& s, float* t);
+// kMaxInflectionSplits). Returns the count. An inflection of pos_z, rad or the projected path
+// is kept only where that function can stray from its chord by its tolerance (tol_z; for the
+// path tol_theta / 8, Constraint I's sagitta) somewhere in the section: below that, the
+// constraints it protects hold whatever the split.
+int section_inflection_points(const SectionCurve& s, const StrokeCamera& camera,
+                              const TessellationParams& params, float* t);
 
 }  // namespace stipple

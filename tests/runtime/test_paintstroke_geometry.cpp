@@ -239,9 +239,19 @@ double cr_inflection(double p0, double p1, double p2, double p3) {
     return -(2 * p0 - 5 * p1 + 4 * p2 - p3) / (3 * (-p0 + 3 * p1 - 3 * p2 + p3));
 }
 
+// Tight tolerances, so every inflection matters, but no midpoint recursion: only §4.2.3
+// splits.
+stipple::TessellationParams inflections_only() {
+    stipple::TessellationParams p = loose(2);
+    p.tol_theta_px = 1e-4f;
+    p.tol_z_px = 1e-4f;
+    p.max_depth = 0;
+    return p;
+}
+
 TEST(PaintstrokeLengthwise, InflectionSplitsAtAnalyticZeros) {
     // pos_z has an inflection inside section 1; x = 0 keeps the path in a plane through the
-    // eye (a straight screen line), and constant radius: only §4.2.3 splits.
+    // eye (a straight screen line), and constant radius.
     const float z[4] = {-4.0f, -4.2f, -5.5f, -5.6f};
     StrokePoint p[4];
     for (int k = 0; k < 4; ++k) p[k] = pt(0.0f, 0.4f * k, z[k], 0.1f);
@@ -250,7 +260,7 @@ TEST(PaintstrokeLengthwise, InflectionSplitsAtAnalyticZeros) {
     ASSERT_GT(tz, 0.05);
     ASSERT_LT(tz, 0.95);
     uint32_t n = 0;
-    std::vector<float> t = boundaries(s, loose(2), &n);
+    std::vector<float> t = boundaries(s, inflections_only(), &n);
     ASSERT_EQ(t.size(), 3u);
     EXPECT_EQ(n, 1u);
     EXPECT_EQ(t[0], 0.0f);
@@ -263,7 +273,7 @@ TEST(PaintstrokeLengthwise, InflectionSplitsAtAnalyticZeros) {
     for (int k = 0; k < 4; ++k) p[k] = pt(0.0f, 0.4f * k, -5.0f, r[k]);
     const stipple::SectionCurve sr = stipple::make_section_curve(p, 4, 1);
     const double tr = cr_inflection(r[0], r[1], r[2], r[3]);
-    t = boundaries(sr, loose(2), &n);
+    t = boundaries(sr, inflections_only(), &n);
     ASSERT_EQ(t.size(), 3u);
     EXPECT_NEAR(t[1], tr, 1e-6);
     EXPECT_NEAR(stipple::section_rad_d2(sr, t[1]), 0.0f, 1e-5f);
@@ -273,7 +283,7 @@ TEST(PaintstrokeLengthwise, InflectionSplitsAtAnalyticZeros) {
     const float ys[4] = {0.0f, 0.1f, 0.8f, 0.85f};
     for (int k = 0; k < 4; ++k) p[k] = pt(0.5f * k, ys[k], -5.0f, 0.1f);
     const stipple::SectionCurve ss = stipple::make_section_curve(p, 4, 1);
-    t = boundaries(ss, loose(2), &n);
+    t = boundaries(ss, inflections_only(), &n);
     ASSERT_EQ(t.size(), 3u);
     const auto curvature = [&](float u) {
         const glm::vec3 d1 = stipple::section_pos_d1(ss, u), d2 = stipple::section_pos_d2(ss, u);
@@ -282,6 +292,22 @@ TEST(PaintstrokeLengthwise, InflectionSplitsAtAnalyticZeros) {
     EXPECT_NEAR(curvature(t[1]), 0.0f, 1e-5f);
     EXPECT_LT(curvature(t[1] - 0.01f) * curvature(t[1] + 0.01f), 0.0f);
     EXPECT_NEAR(t[1], cr_inflection(ys[0], ys[1], ys[2], ys[3]), 1e-5);  // x linear: y'' = 0
+}
+
+// An inflection that cannot matter is not split: where the function cannot stray from its
+// chord by the tolerance anywhere in the section, the constraints it protects already hold.
+TEST(PaintstrokeLengthwise, InflectionsBelowTheToleranceAreNotSplit) {
+    const float z[4] = {-4.0f, -4.2f, -5.5f, -5.6f};
+    StrokePoint p[4];
+    for (int k = 0; k < 4; ++k) p[k] = pt(0.0f, 0.4f * k, z[k], 0.1f);
+    const stipple::SectionCurve s = stipple::make_section_curve(p, 4, 1);
+    uint32_t n = 0;
+    stipple::TessellationParams prm = inflections_only();
+    EXPECT_EQ(boundaries(s, prm, &n).size(), 3u);  // tol 1e-4 px: split
+    prm.tol_z_px = 1e3f;  // far above the z deviation bound of this section
+    prm.tol_theta_px = 1e3f;
+    EXPECT_EQ(boundaries(s, prm, &n).size(), 2u);
+    EXPECT_EQ(n, 0u);
 }
 
 TEST(PaintstrokeLengthwise, RespectsDepthLimit) {
