@@ -109,10 +109,20 @@ void append_segment(const StrokeContext& c, const StrokeVertex* v, uint32_t nv, 
     }
 }
 
+// The ring frame at the end of the previous segment: consecutive segments share their
+// boundary t exactly (lengthwise_next), and sections their joint, so it is computed once.
+struct RingCarry {
+    bool valid = false;
+    float t = 0.0f;
+    RingFrame frame;
+};
+
 // One lengthwise segment [a, b] of section m. False on overflow.
 bool emit_segment(const StrokeContext& c, const SectionCurve& s, uint32_t m, const float* shade,
-                  float a, float b) {
-    const RingFrame fa = ring_frame(s, a), fb = ring_frame(s, b);
+                  float a, float b, RingCarry* carry) {
+    const RingFrame fa = carry->valid && carry->t == a ? carry->frame : ring_frame(s, a);
+    const RingFrame fb = ring_frame(s, b);
+    *carry = RingCarry{true, b, fb};
     // GI'98 §4.3: the far side only where it can show at either end.
     const bool back = c.quality > 0 && (back_side_visible(fa) || back_side_visible(fb));
     StrokeVertex v[2 * kMaxRing];
@@ -191,6 +201,7 @@ void tessellate_stroke(const StrokePoint* points, uint32_t count, const StrokeSt
         ++stats->quality_count[c.quality];
     }
     LengthwiseState st;
+    RingCarry carry;
     for (uint32_t m = 0; m + 1 < count; ++m) {
         const SectionCurve s = make_section_curve(points, count, m);
         // §5.3: p is computed at the control points and its shading factor interpolated.
@@ -204,8 +215,12 @@ void tessellate_stroke(const StrokePoint* points, uint32_t count, const StrokeSt
             stats->inflection_splits += st.inflection_splits;
         }
         float a = 0.0f, b = 0.0f;
+        // Section m + 1 starts where section m ended (same point, tangent and radius, exactly:
+        // runtime/paintstroke_curve.h), so the last ring carries over as t = 0.
+        carry.valid = carry.valid && carry.t == 1.0f;
+        carry.t = 0.0f;
         while (lengthwise_next(&st, &a, &b))
-            if (!emit_segment(c, s, m, shade, a, b)) return;
+            if (!emit_segment(c, s, m, shade, a, b, &carry)) return;
         if (m + 2 == count && params.end_caps && !emit_cap(c, s, m, shade, 1.0f, 1.0f)) return;
     }
 }
