@@ -125,7 +125,8 @@ struct VisibleDot {
 };
 
 // The dots the last frame drew where the picture shows them: size > 0, centre inside the
-// image and not hidden by the mesh (the depth test the GPU makes, at the centre pixel).
+// image and not hidden by the mesh (the depth test the GPU makes, at the centre pixel; the
+// depth copy holds the mesh pass only, so a dot hidden by a paintstroke still counts).
 // `depth` is renderer_read_depth's output (bottom row first). Writes at most `capacity`
 // (p.point_capacity is always enough) and returns the count.
 uint32_t pipeline_visible_dots(const Pipeline& p, const float* depth, VisibleDot* out,

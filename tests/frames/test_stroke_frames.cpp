@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 
@@ -130,6 +131,33 @@ TEST(StrokeFrames, StrokesHideBehindTheBody) {
         else
             EXPECT_GT(changed, 200u) << "the stroke in front of the torus did not show";
     }
+}
+
+// Stroke LOD from the hierarchy's coarse-to-fine order: with --stroke-lod, a hair draws only
+// where its root point's relevance radius covers enough pixels, so zooming out thins the fur.
+TEST(StrokeFrames, LodThinsTheFurWithDistance) {
+    const std::string asset = baked_asset("assets/CesiumMan/CesiumMan.glb", kFurBake);
+    ASSERT_FALSE(asset.empty());
+    ScratchDir dir;
+    long last = 1 << 30;
+    long drawn[3] = {};
+    int k = 0;
+    for (const char* zoom : {"1", "0.5", "0.25"}) {
+        std::string log;
+        ASSERT_EQ(run(play_checked() + " " + asset + " --out " + dir.file(zoom) +
+                          " --frames 1 --size 320x240 --no-png --no-apng --stats --stroke-lod 1.5" +
+                          " --zoom " + zoom,
+                      &log),
+                  0)
+            << log;
+        const size_t at = log.find("\"strokes_drawn\": ");
+        ASSERT_NE(at, std::string::npos) << log;
+        drawn[k] = std::atol(log.c_str() + at + 17);
+        EXPECT_LE(drawn[k], last) << "zoom " << zoom;
+        last = drawn[k++];
+    }
+    EXPECT_EQ(drawn[0], 3000);      // zoom 1: every hair
+    EXPECT_LT(drawn[2], 3000 / 2);  // zoom 0.25: the coarser part only
 }
 
 }  // namespace
