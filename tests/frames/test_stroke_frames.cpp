@@ -160,4 +160,39 @@ TEST(StrokeFrames, LodThinsTheFurWithDistance) {
     EXPECT_LT(drawn[2], 3000 / 2);  // zoom 0.25: the coarser part only
 }
 
+// GI'98 eqs. 3-5 in a frame: the water stream (assets/strokes/water.json: op_min 0.35,
+// op_centre 0.15, op_edge 0.85) seen from the side, drawn over black and over white. Where
+// only the stream covers the background, black = a c and white = a c + (1 - a), so each
+// pixel's opacity is a = 1 - (white - black). Across the stream it must run from
+// op_min * op_edge at the silhouette down to op_min * op_centre at the centre (the Fresnel
+// look of §5.2).
+TEST(StrokeFrames, WaterStreamShowsBreadthwiseOpacity) {
+    const std::string asset =
+        baked_asset("assets/torus.obj", "--points 5000 --strokes assets/strokes/water.json");
+    ASSERT_FALSE(asset.empty());
+    ScratchDir dir;
+    const std::string args = "--size 200x400 --zoom 3 --no-silhouettes --tone 0 --frames 1";
+    const Image black = frame_png(play(asset, dir, "black", args + " --background 000000"));
+    const Image white = frame_png(play(asset, dir, "white", args + " --background ffffff"));
+    const int y = 330;  // below the torus: the stream alone over the background
+    std::vector<double> alpha;
+    for (int x = 60; x < black.width; ++x) {
+        const size_t i = (size_t(y) * size_t(black.width) + size_t(x)) * 4;
+        const double a = 1.0 - (double(white.rgba[i]) - double(black.rgba[i])) / 255.0;
+        if (a > 0.02)
+            alpha.push_back(a);
+        else if (!alpha.empty())
+            break;  // the end of the stream's run
+    }
+    ASSERT_GE(alpha.size(), 7u) << "the stream is too narrow to measure";
+    const double edge = std::max(alpha.front(), alpha.back());
+    const double centre = *std::min_element(alpha.begin() + 2, alpha.end() - 2);
+    EXPECT_NEAR(edge, 0.35 * 0.85, 0.05);
+    EXPECT_NEAR(centre, 0.35 * 0.15, 0.04);
+    const size_t mid = std::min_element(alpha.begin(), alpha.end()) - alpha.begin();
+    for (size_t k = 1; k <= mid; ++k) EXPECT_LE(alpha[k], alpha[k - 1] + 0.01) << k;  // falls
+    for (size_t k = mid + 1; k < alpha.size(); ++k)
+        EXPECT_GE(alpha[k], alpha[k - 1] - 0.01) << k;  // and rises again
+}
+
 }  // namespace
