@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <new>
 
+#include "runtime/camera.h"
 #include "runtime/double_sided.h"
 #include "runtime/point_placement.h"
 #include "runtime/silhouette.h"
@@ -147,68 +148,11 @@ void pose_mesh(Pipeline* p, const AnimationState& state, StageTimes* t, Clock::t
     if (t) t->skin += ms_since(clock);
 }
 
-// Orbit camera around the bounding sphere of what is framed: the baked bounds of the clips
-// being played (config.frame_clip / frame_blend_clip, BNDS section), else the rest pose; zoom
-// narrows the field of view so that zoom 2 is exactly twice as large on screen.
+// Orbit camera around what is framed (runtime/camera.h), in the pipeline's image.
 void setup_camera(Pipeline* p) {
-    const Asset& a = *p->asset;
     const FrameConfig& c = p->config;
-    glm::vec3 lo(1e30f), hi(-1e30f);
-    for (int clip : {c.frame_clip, c.frame_blend_clip}) {
-        if (!a.bounds.present || clip < 0 || uint32_t(clip) >= a.clip_count) continue;
-        const float* box = a.bounds.clips + size_t(clip) * 6;
-        lo = glm::min(lo, glm::vec3(box[0], box[1], box[2]));
-        hi = glm::max(hi, glm::vec3(box[3], box[4], box[5]));
-    }
-    if (lo.x > hi.x && a.bounds.present) {  // no clip framed: the rest pose's box
-        lo = glm::vec3(a.bounds.rest[0], a.bounds.rest[1], a.bounds.rest[2]);
-        hi = glm::vec3(a.bounds.rest[3], a.bounds.rest[4], a.bounds.rest[5]);
-    }
-    if (lo.x > hi.x)  // version-2 asset: the rest pose as posed in pipeline_init
-        for (uint32_t i = 0; i < a.mesh.vertex_count; ++i) {
-            glm::vec3 v(p->vertex_positions[i * 3], p->vertex_positions[i * 3 + 1],
-                        p->vertex_positions[i * 3 + 2]);
-            lo = glm::min(lo, v);
-            hi = glm::max(hi, v);
-        }
-    const glm::vec3 center = 0.5f * (lo + hi);
-    const float radius = std::max(0.5f * glm::length(hi - lo), 1e-6f);
-    const float aspect = float(c.width) / float(c.height);
-    const float half_fov = glm::radians(c.fov_degrees) * 0.5f;
-    const float half_fov_min = aspect < 1.0f ? std::atan(std::tan(half_fov) * aspect) : half_fov;
-    const float distance = radius / std::sin(half_fov_min);
-    // resolve_frame_config keeps the pitch in [-90, 90].
-    const float yaw = glm::radians(c.yaw_degrees), pitch = glm::radians(c.pitch_degrees);
-    const glm::vec3 dir(std::sin(yaw) * std::cos(pitch), std::sin(pitch),
-                        std::cos(yaw) * std::cos(pitch));
-    // Screen up = d(dir)/d(pitch): perpendicular to the view direction at every pitch, +Y at
-    // pitch 0; looking straight down (pitch 90) the side away from the camera's heading is
-    // up, as if the camera had tilted over. lookAt never gets an up parallel to the view.
-    const glm::vec3 up(-std::sin(yaw) * std::sin(pitch), std::cos(pitch),
-                       -std::cos(yaw) * std::sin(pitch));
-    const glm::vec3 eye = center + dir * distance;
-    const glm::mat4 view = glm::lookAt(eye, center, up);
-    const float zoomed_half_fov = std::atan(std::tan(half_fov) / c.zoom);
-    const float near_plane = std::max(distance - 3.0f * radius, 0.02f * distance);
-    const glm::mat4 proj =
-        glm::perspective(2.0f * zoomed_half_fov, aspect, near_plane, distance + 3.0f * radius);
-    p->view_projection = proj * view;
-    p->view = view;
-    p->projection = proj;
-    p->focal_px = 0.5f * float(c.height) / std::tan(zoomed_half_fov);
-
-    SizeParams& s = p->size_params;
-    s.view_projection = p->view_projection;
-    s.eye = eye;
-    s.viewport_height = float(c.height);
-    s.max_point_size = c.max_point_size;
-    s.smooth_slope = c.smooth_slope;
-    s.constant_tone = c.constant_tone;
-    s.dark_tone = c.dark_tone;
-    // Key light from the upper left, in front of the subject (camera space), to world.
-    const glm::vec3 light_view = glm::normalize(glm::vec3(-0.5f, 0.6f, 0.6f));
-    s.light_direction = glm::normalize(glm::vec3(glm::inverse(view) * glm::vec4(light_view, 0.0f)));
-    p->light_eye = light_view;
+    const OrbitCamera cam = orbit_camera(*p->asset, c, p->vertex_positions.get());
+    pipeline_set_camera(p, cam.view, cam.projection, c.width, c.height);
 }
 
 // Only dots with a size go to the GPU: at 100k points a frame draws ~5k, and uploading
@@ -229,8 +173,10 @@ uint32_t compact_drawn_points(Pipeline* p, uint32_t count) {
     return drawn;
 }
 
+}  // namespace
+
 // What the stroke stage reads from this frame.
-StrokeFrameInput stroke_input(const Pipeline& p) {
+StrokeFrameInput pipeline_stroke_input(const Pipeline& p) {
     StrokeFrameInput in;
     in.positions = p.vertex_positions.get();
     in.normals = p.vertex_normals.get();
@@ -242,6 +188,8 @@ StrokeFrameInput stroke_input(const Pipeline& p) {
     in.light_eye = p.light_eye;
     return in;
 }
+
+namespace {
 
 // The finest quarter of the bake is where the run-time refinement takes over: extra points
 // can be drawn only where the size rule draws baked points of that region size, so while none
@@ -407,6 +355,22 @@ void pipeline_frame(Pipeline* p, int clip, float time, StageTimes* t) {
 }
 
 void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
+    pipeline_update(p, state, t);
+    Clock::time_point clock = Clock::now();
+    renderer_draw_mesh(&p->renderer, p->view_projection, p->vertex_positions.get(),
+                       p->asset->mesh.vertex_count);
+    if (p->strokes.enabled) {  // over the depth pass, into its colour and depth, before the ink
+        renderer_begin_overlay(&p->renderer);
+        stroke_stage_draw(&p->strokes, pipeline_stroke_input(*p));
+    }
+    renderer_draw_lines(&p->renderer, p->view_projection, p->lines.get(), p->lines_drawn);
+    renderer_draw_points(&p->renderer, p->view_projection, p->draw_positions.get(),
+                         p->draw_sizes.get(), p->points_drawn);
+    p->renderer.gl.Finish();
+    if (t) t->draw += ms_since(&clock);
+}
+
+void pipeline_update(Pipeline* p, const AnimationState& state, StageTimes* t) {
     const Asset& a = *p->asset;
     Clock::time_point clock = Clock::now();
     pose_mesh(p, state, t, &clock);
@@ -464,20 +428,33 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
                                           p->vertex_positions.get(), p->lines.get());
     }
     if (t) t->silhouette += ms_since(&clock);
-    const StrokeFrameInput strokes = stroke_input(*p);
-    stroke_stage_update(&p->strokes, a, strokes, p->config.stroke_lod_px);
+    stroke_stage_update(&p->strokes, a, pipeline_stroke_input(*p), p->config.stroke_lod_px);
     if (t) t->strokes += ms_since(&clock);
-    renderer_draw_mesh(&p->renderer, p->view_projection, p->vertex_positions.get(),
-                       a.mesh.vertex_count);
-    if (p->strokes.enabled) {  // over the depth pass, into its colour and depth, before the ink
-        renderer_begin_overlay(&p->renderer);
-        stroke_stage_draw(&p->strokes, strokes);
-    }
-    renderer_draw_lines(&p->renderer, p->view_projection, p->lines.get(), p->lines_drawn);
-    renderer_draw_points(&p->renderer, p->view_projection, p->draw_positions.get(),
-                         p->draw_sizes.get(), p->points_drawn);
-    p->renderer.gl.Finish();
-    if (t) t->draw += ms_since(&clock);
+}
+
+void pipeline_set_camera(Pipeline* p, const glm::mat4& view, const glm::mat4& projection,
+                         int viewport_width, int viewport_height) {
+    const FrameConfig& c = p->config;
+    p->view_projection = projection * view;
+    p->view = view;
+    p->projection = projection;
+    // projection[1][1] = cot(half the vertical field of view) for perspective projections.
+    p->focal_px = 0.5f * float(viewport_height) * projection[1][1];
+    p->viewport_width = viewport_width;
+    p->viewport_height = viewport_height;
+    SizeParams& s = p->size_params;
+    s.view_projection = p->view_projection;
+    const glm::mat4 inverse_view = glm::inverse(view);
+    s.eye = glm::vec3(inverse_view[3]);
+    s.viewport_height = float(viewport_height);
+    s.max_point_size = c.max_point_size;
+    s.smooth_slope = c.smooth_slope;
+    s.constant_tone = c.constant_tone;
+    s.dark_tone = c.dark_tone;
+    // Key light from the upper left, in front of the subject (camera space), to the pose's space.
+    const glm::vec3 light_view = glm::normalize(glm::vec3(-0.5f, 0.6f, 0.6f));
+    s.light_direction = glm::normalize(glm::vec3(inverse_view * glm::vec4(light_view, 0.0f)));
+    p->light_eye = light_view;
 }
 
 uint64_t pipeline_point_id(const Pipeline& p, uint32_t i) {

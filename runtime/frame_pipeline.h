@@ -39,8 +39,9 @@ struct Pipeline {
     FrameConfig config;  // resolved (runtime/frame_config.h)
     glm::mat4 view_projection = glm::mat4(1.0f);
     glm::mat4 view = glm::mat4(1.0f), projection = glm::mat4(1.0f);  // view_projection's parts
-    float focal_px = 0.0f;                  // pixels per unit at unit distance (this zoom)
-    glm::vec3 light_eye{0.0f, 0.0f, 1.0f};  // the key light, toward it, eye space
+    float focal_px = 0.0f;                        // pixels per unit at unit distance (this zoom)
+    int viewport_width = 0, viewport_height = 0;  // what the camera projects to
+    glm::vec3 light_eye{0.0f, 0.0f, 1.0f};        // the key light, toward it, eye space
     SizeParams size_params;
     Renderer renderer;
 
@@ -91,6 +92,21 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* times)
 
 // The same for one clip at `time` seconds (-1: rest pose).
 void pipeline_frame(Pipeline* p, int clip, float time, StageTimes* times);
+
+// The CPU half of pipeline_frame: poses the mesh and runs every point, silhouette and stroke
+// stage for the camera set last (pipeline_set_camera or the orbit camera), drawing nothing.
+void pipeline_update(Pipeline* p, const AnimationState& state, StageTimes* times);
+
+// Sets the camera the next frames see: `view` takes the posed mesh's space to eye space,
+// `projection` eye space to clip space (perspective, GL conventions), for a viewport of the
+// given size in pixels (the stipple sizes are in its pixels). pipeline_init and
+// pipeline_set_view set the orbit camera (runtime/camera.h); runtime/app_frame.h sets the
+// application's.
+void pipeline_set_camera(Pipeline* p, const glm::mat4& view, const glm::mat4& projection,
+                         int viewport_width, int viewport_height);
+
+// What the stroke stage reads from the last update.
+StrokeFrameInput pipeline_stroke_input(const Pipeline& p);
 
 // Changes what needs no new memory between frames: the orbit camera (zoom, yaw, pitch,
 // fov_degrees) and the tone settings (constant_tone, dark_tone, max_point_size,

@@ -61,6 +61,7 @@ namespace stipple {
     X(PFNGLRENDERBUFFERSTORAGEPROC, RenderbufferStorage)         \
     X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                         \
     X(PFNGLREADBUFFERPROC, ReadBuffer)                           \
+    X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)                 \
     X(PFNGLREADPIXELSPROC, ReadPixels)                           \
     X(PFNGLPIXELSTOREIPROC, PixelStorei)                         \
     X(PFNGLFINISHPROC, Finish)                                   \
@@ -73,7 +74,12 @@ namespace stipple {
     X(PFNGLTEXIMAGE2DPROC, TexImage2D)                           \
     X(PFNGLTEXPARAMETERIPROC, TexParameteri)                     \
     X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)       \
-    X(PFNGLUNIFORM1IPROC, Uniform1i)
+    X(PFNGLUNIFORM1IPROC, Uniform1i)                             \
+    X(PFNGLGETINTEGERVPROC, GetIntegerv)                         \
+    X(PFNGLGETBOOLEANVPROC, GetBooleanv)                         \
+    X(PFNGLISENABLEDPROC, IsEnabled)                             \
+    X(PFNGLCOLORMASKPROC, ColorMask)                             \
+    X(PFNGLBLENDFUNCSEPARATEPROC, BlendFuncSeparate)
 
 struct GlApi {
 #define STIPPLE_GL_MEMBER(type, name) type name = nullptr;

@@ -389,6 +389,10 @@ void renderer_draw_lines(Renderer* r, const glm::mat4& view_projection, const fl
     check_pass(r, "lines");
 }
 
+void renderer_check_errors(Renderer* r, const char* pass) {
+    check_pass(r, pass);
+}
+
 void renderer_read_color(Renderer* r, uint8_t* rgba) {
     const GlApi& gl = r->gl;
     gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
@@ -428,6 +432,29 @@ void renderer_destroy(Renderer* r) {
     if (r->fbo) gl.DeleteFramebuffers(1, &r->fbo);
     if (r->ink_fbo) gl.DeleteFramebuffers(1, &r->ink_fbo);
     *r = Renderer();
+}
+
+void renderer_blit_to_default(Renderer* r, int width, int height) {
+    const GlApi& gl = r->gl;
+    const RendererConfig& c = r->config;
+    // The largest rectangle of the frame's aspect that fits, centred.
+    int w = width, h = int(int64_t(width) * c.height / c.width);
+    if (h > height) h = height, w = int(int64_t(height) * c.width / c.height);
+    const int x = (width - w) / 2, y = (height - h) / 2;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl.Viewport(0, 0, width, height);
+    if (w != width || h != height) {
+        const float background[4] = {c.background[0], c.background[1], c.background[2], 1.0f};
+        gl.ClearBufferfv(GL_COLOR, 0, background);
+    }
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    const bool same = w == c.width && h == c.height;
+    gl.BlitFramebuffer(0, 0, c.width, c.height, x, y, x + w, y + h, GL_COLOR_BUFFER_BIT,
+                       same ? GL_NEAREST : GL_LINEAR);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl.ReadBuffer(GL_BACK);
+    check_pass(r, "blit");
 }
 
 }  // namespace stipple

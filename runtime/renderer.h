@@ -84,12 +84,22 @@ void renderer_begin_overlay(Renderer* r);
 void renderer_draw_lines(Renderer* r, const glm::mat4& view_projection, const float* lines,
                          uint32_t line_count);
 
+// With RendererConfig::check_errors: calls glGetError and records what it reports after
+// `pass` in Renderer::gl_errors (for passes drawn outside this file: runtime/app_frame.cpp).
+void renderer_check_errors(Renderer* r, const char* pass);
+
 // Reads back the frame as RGBA8, bottom row first (width * height * 4 bytes).
 void renderer_read_color(Renderer* r, uint8_t* rgba);
 // Reads back the mesh pass's window depth (1 = background), bottom row first; needs
 // RendererConfig::depth_copy. `scratch`
 // must hold width * height * 4 floats; the result is written to depth (width * height).
 void renderer_read_depth(Renderer* r, float* scratch, float* depth);
+
+// Copies the last frame to the default framebuffer (an on-screen window's back buffer) of
+// width x height pixels: scaled to fit, centred, aspect kept, the borders cleared to the
+// background; pixel for pixel (GL_NEAREST) when the sizes match. Leaves framebuffer 0 bound
+// for reading and drawing. The caller swaps.
+void renderer_blit_to_default(Renderer* r, int width, int height);
 
 void renderer_destroy(Renderer* r);
 

@@ -129,14 +129,43 @@ stipple_result stipple_player_desc_resolve(const stipple_player_desc* in, stippl
  * of range, no get_proc_address), STIPPLE_ERROR_GL or STIPPLE_ERROR_OUT_OF_MEMORY. */
 stipple_result stipple_player_create(const stipple_asset* asset, const stipple_player_desc* desc,
                                      stipple_player** out);
-/* Poses clip `clip` (-1 or no such clip: the rest pose) at `time_seconds` and draws. Clips
- * loop: the time is wrapped into [0, duration). */
+/* Poses clip `clip` (-1 or no such clip: the rest pose) at `time_seconds` and draws into the
+ * player's own offscreen image (stipple_player_read_rgba), with the orbit camera of the desc
+ * or the camera of the last stipple_player_draw_into. Clips loop: the time is wrapped into
+ * [0, duration). Leaves GL state as its passes set it (create does one such draw too):
+ * applications sharing the context use stipple_player_draw_into, which restores it. */
 void stipple_player_draw(stipple_player* player, int clip, float time_seconds);
 /* Layers clip `clip2` at `time2` over `clip` at `time` with weight `weight2`, clamped to
  * [0, 1] (0: only `clip`; ramp it from 0 to 1 for a crossfade; clip2 -1: no layer) and draws.
  * Both clips loop. */
 void stipple_player_draw_blend(stipple_player* player, int clip, float time, int clip2, float time2,
                                float weight2);
+/* Drawing into the application's own frame (runtime/app_frame.h): its camera, framebuffer
+ * and depth. Matrices are column-major float[16] (GL / GLM layout). */
+typedef struct stipple_app_view {
+    float view[16];       /* world to eye space */
+    float projection[16]; /* eye to clip space (perspective, GL conventions) */
+    float model[16];      /* the asset's space to world space */
+    int viewport[4];      /* x, y, width, height in pixels (width and height in [1, 16384]) */
+} stipple_app_view;
+
+/* Poses `clip` at `time_seconds` (layered with clip2 at time2 by weight2 as in
+ * stipple_player_draw_blend; clip2 -1: none) for the application's camera and draws into the
+ * framebuffer bound for drawing, depth-tested against the depth it holds: the body in the
+ * paper colour (writing depth), strokes, silhouettes and dots. The application's GL state
+ * (program, vertex array, array buffer, framebuffers, viewport, blending, depth and colour
+ * settings, culling, line width, texture unit 0) is restored before it returns. For exact
+ * dot visibility create the player with the viewport's width and height. NULL player or
+ * view, or a viewport out of range: nothing is drawn and stipple_last_error says why. */
+void stipple_player_draw_into(stipple_player* player, const stipple_app_view* view, int clip,
+                              float time, int clip2, float time2, float weight2);
+
+/* The orbit camera the player uses (zoom, yaw, pitch, field of view of `desc`, framing the
+ * asset): view and projection matrices for stipple_app_view, so an application can start
+ * from the player's framing. */
+stipple_result stipple_orbit_camera(const stipple_asset* asset, const stipple_player_desc* desc,
+                                    float view[16], float projection[16]);
+
 /* width * height * 4 bytes, bottom row first (GL order). */
 void stipple_player_read_rgba(stipple_player* player, uint8_t* rgba);
 uint32_t stipple_player_points_drawn(const stipple_player* player);

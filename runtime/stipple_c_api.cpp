@@ -3,9 +3,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <glm/gtc/type_ptr.hpp>
 #include <new>
 
+#include "runtime/app_frame.h"
 #include "runtime/asset.h"
+#include "runtime/camera.h"
 #include "runtime/frame_pipeline.h"
 #include "runtime/stipple.h"
 
@@ -94,6 +97,18 @@ stipple::FrameConfig frame_config_of(const stipple_player_desc& d) {
     if (d.stroke_nudge != 0.0f) c.stroke_nudge = d.stroke_nudge < 0.0f ? 0.0f : d.stroke_nudge;
     c.stroke_vertex_budget = d.stroke_vertex_budget < 0 ? 1u : uint32_t(d.stroke_vertex_budget);
     return c;
+}
+
+// Clip `clip` at `time`, layered with clip2 at time2 by weight2 clamped to [0, 1].
+stipple::AnimationState animation_state(int clip, float time, int clip2, float time2,
+                                        float weight2) {
+    stipple::AnimationState state;
+    state.clip = clip;
+    state.time = time;
+    state.blend_clip = clip2;
+    state.blend_time = time2;
+    state.blend_weight = weight2 < 0 ? 0.0f : (weight2 > 1 ? 1.0f : weight2);
+    return state;
 }
 
 // The inverse of frame_config_of for a resolved config: every field explicit.
@@ -227,13 +242,43 @@ void stipple_player_draw(stipple_player* p, int clip, float time_seconds) {
 void stipple_player_draw_blend(stipple_player* p, int clip, float time, int clip2, float time2,
                                float weight2) {
     if (!p) return;
-    stipple::AnimationState state;
-    state.clip = clip;
-    state.time = time;
-    state.blend_clip = clip2;
-    state.blend_time = time2;
-    state.blend_weight = weight2 < 0 ? 0.0f : (weight2 > 1 ? 1.0f : weight2);
-    stipple::pipeline_frame(&p->pipeline, state, nullptr);
+    stipple::pipeline_frame(&p->pipeline, animation_state(clip, time, clip2, time2, weight2),
+                            nullptr);
+}
+
+void stipple_player_draw_into(stipple_player* p, const stipple_app_view* view, int clip, float time,
+                              int clip2, float time2, float weight2) {
+    if (!p || !view) {
+        fail(STIPPLE_ERROR_INVALID_ARGUMENT, "NULL argument");
+        return;
+    }
+    const int w = view->viewport[2], h = view->viewport[3];
+    if (w < 1 || h < 1 || w > 16384 || h > 16384) {
+        char message[96];
+        std::snprintf(message, sizeof(message), "viewport %d x %d outside [1, 16384]", w, h);
+        fail(STIPPLE_ERROR_INVALID_ARGUMENT, message);
+        return;
+    }
+    stipple::AppView v;
+    v.view = glm::make_mat4(view->view);
+    v.projection = glm::make_mat4(view->projection);
+    v.model = glm::make_mat4(view->model);
+    for (int k = 0; k < 4; ++k) v.viewport[k] = view->viewport[k];
+    stipple::pipeline_draw_into(&p->pipeline, animation_state(clip, time, clip2, time2, weight2), v,
+                                nullptr);
+}
+
+stipple_result stipple_orbit_camera(const stipple_asset* asset, const stipple_player_desc* desc,
+                                    float view[16], float projection[16]) {
+    if (!asset || !desc || !view || !projection)
+        return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "NULL argument");
+    stipple::FrameConfig c;
+    stipple_result r = from_status(stipple::resolve_frame_config(frame_config_of(*desc), &c));
+    if (r != STIPPLE_OK) return r;
+    const stipple::OrbitCamera cam = stipple::orbit_camera(asset->asset, c, nullptr);
+    std::memcpy(view, glm::value_ptr(cam.view), 16 * sizeof(float));
+    std::memcpy(projection, glm::value_ptr(cam.projection), 16 * sizeof(float));
+    return STIPPLE_OK;
 }
 
 void stipple_player_read_rgba(stipple_player* p, uint8_t* rgba) {

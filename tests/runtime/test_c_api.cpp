@@ -3,6 +3,7 @@
 
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "platform/headless_context.h"
 #include "runtime/stipple.h"
@@ -113,6 +114,66 @@ TEST(CApi, PaintstrokeSwitches) {
     stipple_player_desc out;
     EXPECT_EQ(stipple_player_desc_resolve(&bad, &out), STIPPLE_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::strstr(stipple_last_error(), "stroke_quality"), nullptr) << stipple_last_error();
+}
+
+// stipple_player_draw_into through the C API: the orbit camera's matrices, the test's own
+// framebuffer cleared to white, and the frame matches the player's own frame of the state.
+TEST(CApi, DrawsIntoTheApplicationsFramebuffer) {
+    const std::string path = baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 20000");
+    HeadlessGl gl;
+    std::string error;
+    ASSERT_TRUE(gl.open(&error)) << error;
+    const stipple::GlApi& g = gl.gl();
+    stipple_asset* asset = nullptr;
+    ASSERT_EQ(stipple_asset_load_file(path.c_str(), &asset), STIPPLE_OK);
+    stipple_player_desc desc = {};
+    desc.width = 320;
+    desc.height = 240;
+    desc.get_proc_address = stipple::platform::proc_loader(gl.context());
+    stipple_player* player = nullptr;
+    ASSERT_EQ(stipple_player_create(asset, &desc, &player), STIPPLE_OK) << stipple_last_error();
+    stipple_app_view view = {};
+    ASSERT_EQ(stipple_orbit_camera(asset, &desc, view.view, view.projection), STIPPLE_OK);
+    for (int k = 0; k < 4; ++k) view.model[k * 5] = 1.0f;
+    view.viewport[2] = 320;
+    view.viewport[3] = 240;
+    GLuint fbo = 0, rb[2] = {};
+    g.GenFramebuffers(1, &fbo);
+    g.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    g.GenRenderbuffers(2, rb);
+    g.BindRenderbuffer(GL_RENDERBUFFER, rb[0]);
+    g.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 320, 240);
+    g.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[0]);
+    g.BindRenderbuffer(GL_RENDERBUFFER, rb[1]);
+    g.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, 320, 240);
+    g.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
+    g.Viewport(0, 0, 320, 240);
+    g.DepthMask(GL_TRUE);  // stipple_player_create drew a frame of its own (player state)
+    g.ClearColor(1, 1, 1, 1);
+    g.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    stipple_player_draw_into(player, &view, 0, 0.5f, -1, 0.0f, 0.0f);
+    std::vector<uint8_t> app(320 * 240 * 4), own(320 * 240 * 4);
+    g.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    g.ReadPixels(0, 0, 320, 240, GL_RGBA, GL_UNSIGNED_BYTE, app.data());
+    stipple_player_draw(player, 0, 0.5f);
+    stipple_player_read_rgba(player, own.data());
+    size_t differ = 0, ink = 0;
+    for (size_t i = 0; i < own.size(); i += 4) {
+        ink += own[i] < 100;
+        differ += std::abs(int(app[i]) - int(own[i])) > 8;
+    }
+    size_t ink_app = 0;
+    for (size_t i = 0; i < app.size(); i += 4) ink_app += app[i] < 100;
+    EXPECT_GT(ink, 400u);
+    EXPECT_LT(differ, 320u * 240u / 200u) << differ << " ink " << ink << " app ink " << ink_app;
+    view.viewport[2] = 0;  // out of range: refused with a message, nothing drawn
+    stipple_player_draw_into(player, &view, 0, 0.5f, -1, 0.0f, 0.0f);
+    EXPECT_NE(std::strstr(stipple_last_error(), "viewport"), nullptr) << stipple_last_error();
+    g.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    g.DeleteFramebuffers(1, &fbo);
+    g.DeleteRenderbuffers(2, rb);
+    stipple_player_destroy(player);
+    stipple_asset_destroy(asset);
 }
 
 }  // namespace
