@@ -6,7 +6,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 PACKAGES=(build-essential cmake pkg-config libglm-dev libegl-dev libgles-dev libegl1-mesa-dev
           libgl1-mesa-dri libosmesa6-dev libtinygltf-dev nlohmann-json3-dev libopenmesh-dev
-          libstb-dev libgtest-dev libbenchmark-dev clang-format python3)
+          libstb-dev libgtest-dev libbenchmark-dev clang-format python3 libx11-dev xvfb xauth)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

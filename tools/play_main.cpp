@@ -18,6 +18,7 @@
 #include "tools/image_write.h"
 #include "tools/json_line.h"
 #include "tools/play_outputs.h"
+#include "tools/play_window.h"
 
 namespace {
 
@@ -50,6 +51,7 @@ std::string background_default() {
 
 const std::string kUsage =
     "usage: stipple-play ASSET.stip --out DIR [options]\n"
+    "       stipple-play ASSET.stip --window [options]   (a kiosk window; keys below)\n"
     "  --out DIR               where frame_NNNN.png and anim.png go (created if missing)\n"
     "  --clip NAME|INDEX       animation clip (default 0; the rest pose if the asset has none)\n"
     "  --blend CLIP2:W         layer a second clip with weight W in [0,1] (same clock)\n"
@@ -131,8 +133,8 @@ const std::string kUsage =
     "                          fails the run (exit 1) naming the pass; --stats counts them\n"
     "  --rss-every N           every N frames append frame,rss_kb,ms_per_frame (resident\n"
     "                          memory, mean frame time since the last row) to DIR/rss.csv\n"
-    "  --backend egl|osmesa    force a context backend (default: EGL, then OSMesa)\n"
-    "  -h, --help              this text\n";
+    "  --backend egl|osmesa    force a context backend (default: EGL, then OSMesa)\n" +
+    std::string(stipple::play::kWindowUsage) + "  -h, --help              this text\n";
 
 struct Options {
     std::string asset, out, clip, backend, second_clip;
@@ -162,7 +164,9 @@ struct Options {
     double stroke_tol_theta = kDefaults.stroke_tol_theta, stroke_tol_z = kDefaults.stroke_tol_z;
     double stroke_lod = kDefaults.stroke_lod_px;
     long stroke_budget = long(kDefaults.stroke_vertex_budget);
-    long rss_every = 0;  // > 0: DIR/rss.csv gets a row every rss_every frames
+    long rss_every = 0;                // > 0: DIR/rss.csv gets a row every rss_every frames
+    stipple::play::WindowOptions win;  // --window (tools/play_window.h)
+    bool frames_given = false;         // a window runs until Esc without --frames
 };
 
 stipple::cli::Parser g_parser("stipple-play", kUsage.c_str());
@@ -205,7 +209,11 @@ void add_view_options(stipple::cli::Parser& p, Options& o) {
         .custom("--crossfade",
                 [&o](const std::string& n, const std::string& v) { parse_mix(n, v, &o); })
         .choice("--skinning", {std::pair<const char*, bool>{"lbs", false}, {"dqs", true}}, &o.dqs)
-        .integer("--frames", 1, 100000, &o.frames)
+        .custom("--frames",
+                [&o](const std::string& n, const std::string& v) {
+                    o.frames = long(g_parser.integer_value(n, v, 1, 100000));
+                    o.frames_given = true;
+                })
         .number("--fps", 0.001, 1000, &o.fps)
         .number("--time", -1e6, 1e6, &o.time0)
         .custom("--size",
@@ -272,9 +280,14 @@ Options parse(int argc, char** argv) {
     g_parser.positional("asset", &o.asset).text("--out", &o.out);
     add_view_options(g_parser, o);
     add_render_options(g_parser, o);
+    stipple::play::add_window_options(g_parser, &o.win);
     g_parser.parse(argc, argv);
     if (o.asset.empty()) die("no asset given (see --help)");
-    if (o.out.empty()) die("no output directory: pass --out DIR");
+    if (o.out.empty() && !o.win.window) die("no output directory: pass --out DIR");
+    if (!o.win.window && (o.win.fullscreen || o.win.fixed || !o.win.screenshot.empty()))
+        die("--fullscreen, --fixed-time and --screenshot need --window");
+    if (o.win.window && (o.mix != Options::Mix::none || o.zoom_to > 0 || o.backend == "osmesa"))
+        die("--blend, --crossfade, --zoom-to and --backend osmesa do not work with --window");
     return o;
 }
 
@@ -537,6 +550,10 @@ int main(int argc, char** argv) {
     stipple::Status st = stipple::load_asset_file(o.asset.c_str(), &asset);
     if (!st.ok()) die(o.asset + ": " + st.message);
     const Clips clips = find_clips(asset, o);
+    if (o.win.window)
+        return stipple::play::run_kiosk({&asset, pipeline_config(o, clips), clips.clip, o.time0,
+                                         o.frames_given ? o.frames : 0, o.out},
+                                        o.win, g_parser);
     make_output_dir(o.out);
 
     stipple::platform::HeadlessConfig hc;
