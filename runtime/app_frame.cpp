@@ -84,7 +84,7 @@ void pipeline_draw_into(Pipeline* p, const AnimationState& state, const AppView&
     const GlApi& gl = r->gl;
     const GlStateSnapshot saved = gl_state_save(gl);
     pipeline_set_camera(p, view.view * view.model, view.projection, view.viewport[2],
-                        view.viewport[3]);
+                        view.viewport[3], view.model);
     pipeline_update(p, state, t);
     const auto start = std::chrono::steady_clock::now();
     const glm::mat4& vp = p->view_projection;

@@ -30,7 +30,8 @@ struct AppView {
 // buffer, draw/read framebuffers, viewport, blend enable and functions, depth test, function
 // and mask, colour mask, culling, line width, the active texture unit and unit 0's 2D texture
 // are saved and restored (runtime/gl_state.h). The framebuffer's colour and depth are what
-// change: the character is in them. Allocates nothing.
+// change: the character is in them. Allocates nothing (the GL driver may, once: llvmpipe
+// compiles its variants of these passes at the first call).
 void pipeline_draw_into(Pipeline* p, const AnimationState& state, const AppView& view,
                         StageTimes* times);
 

@@ -1,5 +1,7 @@
 #include "runtime/frame_config.h"
 
+#include <cmath>
+
 namespace stipple {
 
 namespace {
@@ -19,6 +21,23 @@ template <typename T>
 Status check(const char* field, T value, const Setting<T>& s) {
     if (s.contains(value)) return {};
     return out_of_range(field, double(value), double(s.min), double(s.max));
+}
+
+// Light count, intensities, ambient, and directions that are finite and not zero.
+Status check_lights(const FrameConfig& c) {
+    const FrameSettings& s = kFrameSettings;
+    Status st = check("light_count", c.light_count, s.light_count);
+    if (st.ok()) st = check("ambient", c.ambient, s.ambient);
+    for (int i = 0; st.ok() && i < c.light_count; ++i) {
+        st = check("light intensity", c.lights[i].intensity, s.light_intensity);
+        const float* d = c.lights[i].direction;
+        const float len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        if (st.ok() && !(len2 > 1e-12f && len2 < 1e30f))
+            st = make_status(StatusCode::invalid_argument,
+                             "light %d direction (%g, %g, %g) is zero or not finite", i,
+                             double(d[0]), double(d[1]), double(d[2]));
+    }
+    return st;
 }
 
 // The first field outside its range, or ok.
@@ -47,10 +66,13 @@ Status check_limits(const FrameConfig& c) {
     };
     for (const Status& st : checks)
         if (!st.ok()) return st;
-    for (float channel : c.background)
-        if (!(channel >= 0.0f && channel <= 1.0f))
-            return out_of_range("background channel", double(channel), 0.0, 1.0);
-    return {};
+    const float* colours[3] = {c.background, c.paper, c.ink};
+    const char* names[3] = {"background channel", "paper channel", "ink channel"};
+    for (int k = 0; k < 3; ++k)
+        for (int i = 0; i < 3; ++i)
+            if (!(colours[k][i] >= 0.0f && colours[k][i] <= 1.0f))
+                return out_of_range(names[k], double(colours[k][i]), 0.0, 1.0);
+    return check_lights(c);
 }
 
 }  // namespace
@@ -69,7 +91,13 @@ Status resolve_frame_config(const FrameConfig& in, FrameConfig* out) {
     c.stroke_tol_z = or_default(c.stroke_tol_z, s.stroke_tol_z);
     c.stroke_vertex_budget = or_default(c.stroke_vertex_budget, s.stroke_vertex_budget);
     Status st = check_limits(c);
-    if (st.ok()) *out = c;
+    if (!st.ok()) return st;
+    for (int i = 0; i < c.light_count; ++i) {  // unit directions
+        float* d = c.lights[i].direction;
+        const float len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        for (int k = 0; k < 3; ++k) d[k] /= len;
+    }
+    *out = c;
     return st;
 }
 

@@ -23,6 +23,18 @@ struct Setting {
 // constant_tone's "no constant tone": Lambert lighting decides each point's tone.
 inline constexpr float kLightingTone = -1.0f;
 
+// Directional lights the tone follows (thesis §3.1: tone from Lambert lighting): each point's
+// lighting is ambient + the sum of intensity * max(N.L, 0) over the lights, clamped to [0, 1],
+// mapped from dark_tone (0) to white (1).
+inline constexpr int kMaxLights = 4;
+struct Light {
+    float direction[3] = {-0.5f, 0.6f, 0.6f};  // toward the light; normalised when resolved
+    float intensity = 1.0f;                    // in [0, 16]
+    // true: the direction is in camera space (it turns with the camera: the CLI's key light
+    // from the upper left); false: in world space.
+    bool camera_space = true;
+};
+
 // The one table of frame-setting defaults and limits.
 struct FrameSettings {
     Setting<int> width{640, 16, 16384};  // pixels
@@ -48,7 +60,12 @@ struct FrameSettings {
     Setting<uint32_t> stroke_vertex_budget{1u << 18, 1024u, 1u << 23};
     Setting<float> stroke_lod_px{0.0f, 0.0f, 256.0f};
     Setting<float> stroke_nudge{0.5f, 0.0f, 1.0f};  // GI'98 §4.4 quality-0 normal nudge
-    float background[3] = {1.0f, 1.0f, 1.0f};       // white paper; each channel in [0, 1]
+    Setting<int> light_count{1, 0, kMaxLights};
+    Setting<float> light_intensity{1.0f, 0.0f, 16.0f};
+    Setting<float> ambient{0.0f, 0.0f, 1.0f};
+    float background[3] = {1.0f, 1.0f, 1.0f};  // white paper; each channel in [0, 1]
+    float paper[3] = {1.0f, 1.0f, 1.0f};       // the body's colour
+    float ink[3] = {0.0f, 0.0f, 0.0f};         // dots and silhouettes
 };
 inline constexpr FrameSettings kFrameSettings{};
 
@@ -74,6 +91,12 @@ struct FrameConfig {
     float smooth_slope = kFrameSettings.smooth_slope.fallback;
     float background[3] = {kFrameSettings.background[0], kFrameSettings.background[1],
                            kFrameSettings.background[2]};
+    float paper[3] = {kFrameSettings.paper[0], kFrameSettings.paper[1], kFrameSettings.paper[2]};
+    float ink[3] = {kFrameSettings.ink[0], kFrameSettings.ink[1], kFrameSettings.ink[2]};
+    // Lights (lights[0 .. light_count)); the default is one camera-space key light.
+    int light_count = kFrameSettings.light_count.fallback;
+    Light lights[kMaxLights];
+    float ambient = kFrameSettings.ambient.fallback;
     anim::Skinning skinning = anim::Skinning::lbs;  // or dual quaternions (no candy wrapper)
     bool silhouettes = true;  // draw silhouette lines (needs the asset's EDGE section)
     float line_width = kFrameSettings.line_width.fallback;  // silhouette width in pixels

@@ -323,6 +323,8 @@ RendererConfig renderer_config(const Pipeline& p) {
     rc.indices = asset.mesh.indices;
     rc.triangle_count = asset.mesh.triangle_count;
     std::memcpy(rc.background, c.background, sizeof(rc.background));
+    std::memcpy(rc.paper, c.paper, sizeof(rc.paper));
+    std::memcpy(rc.ink, c.ink, sizeof(rc.ink));
     return rc;
 }
 
@@ -433,7 +435,7 @@ void pipeline_update(Pipeline* p, const AnimationState& state, StageTimes* t) {
 }
 
 void pipeline_set_camera(Pipeline* p, const glm::mat4& view, const glm::mat4& projection,
-                         int viewport_width, int viewport_height) {
+                         int viewport_width, int viewport_height, const glm::mat4& model) {
     const FrameConfig& c = p->config;
     p->view_projection = projection * view;
     p->view = view;
@@ -451,10 +453,27 @@ void pipeline_set_camera(Pipeline* p, const glm::mat4& view, const glm::mat4& pr
     s.smooth_slope = c.smooth_slope;
     s.constant_tone = c.constant_tone;
     s.dark_tone = c.dark_tone;
-    // Key light from the upper left, in front of the subject (camera space), to the pose's space.
-    const glm::vec3 light_view = glm::normalize(glm::vec3(-0.5f, 0.6f, 0.6f));
-    s.light_direction = glm::normalize(glm::vec3(inverse_view * glm::vec4(light_view, 0.0f)));
-    p->light_eye = light_view;
+    // The lights to the pose's space: camera-space ones through the inverse view, world-space
+    // ones through the inverse model (app frames; identity for the player).
+    const glm::mat4 inverse_model = glm::inverse(model);
+    s.light_count = c.light_count;
+    s.ambient = c.ambient;
+    for (int k = 0; k < c.light_count; ++k) {
+        const Light& l = c.lights[k];
+        const glm::vec4 d(l.direction[0], l.direction[1], l.direction[2], 0.0f);
+        s.light_direction[k] =
+            glm::normalize(glm::vec3((l.camera_space ? inverse_view : inverse_model) * d));
+        s.light_intensity[k] = l.intensity;
+    }
+    // Paintstrokes shade with the first light (eye space), or a headlight without lights.
+    p->light_eye = c.light_count > 0
+                       ? glm::normalize(glm::vec3(view * glm::vec4(s.light_direction[0], 0.0f)))
+                       : glm::vec3(0.0f, 0.0f, 1.0f);
+    Renderer& r = p->renderer;  // colours and line width, read at every pass
+    std::memcpy(r.config.paper, c.paper, sizeof(r.config.paper));
+    std::memcpy(r.config.ink, c.ink, sizeof(r.config.ink));
+    std::memcpy(r.config.background, c.background, sizeof(r.config.background));
+    r.config.line_width = c.line_width;
 }
 
 uint64_t pipeline_point_id(const Pipeline& p, uint32_t i) {
@@ -483,6 +502,14 @@ Status pipeline_set_view(Pipeline* p, const FrameConfig& in) {
     c.stroke_tol_z = view.stroke_tol_z;
     c.stroke_lod_px = view.stroke_lod_px;
     c.stroke_nudge = view.stroke_nudge;
+    c.silhouettes = view.silhouettes;
+    c.line_width = view.line_width;
+    std::memcpy(c.background, view.background, sizeof(c.background));
+    std::memcpy(c.paper, view.paper, sizeof(c.paper));
+    std::memcpy(c.ink, view.ink, sizeof(c.ink));
+    c.light_count = view.light_count;
+    std::memcpy(c.lights, view.lights, sizeof(c.lights));
+    c.ambient = view.ambient;
     stroke_stage_configure(&p->strokes, c);
     setup_camera(p);
     return {};

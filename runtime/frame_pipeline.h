@@ -102,17 +102,21 @@ void pipeline_update(Pipeline* p, const AnimationState& state, StageTimes* times
 // given size in pixels (the stipple sizes are in its pixels). pipeline_init and
 // pipeline_set_view set the orbit camera (runtime/camera.h); runtime/app_frame.h sets the
 // application's.
+// `model` takes the posed space to world space (world-space lights are turned by its inverse).
 void pipeline_set_camera(Pipeline* p, const glm::mat4& view, const glm::mat4& projection,
-                         int viewport_width, int viewport_height);
+                         int viewport_width, int viewport_height,
+                         const glm::mat4& model = glm::mat4(1.0f));
 
 // What the stroke stage reads from the last update.
 StrokeFrameInput pipeline_stroke_input(const Pipeline& p);
 
 // Changes what needs no new memory between frames: the orbit camera (zoom, yaw, pitch,
-// fov_degrees) and the tone settings (constant_tone, dark_tone, max_point_size,
-// smooth_slope, relevance_update). The other fields of `view` are ignored. `view` is resolved
-// like pipeline_init's config; on invalid_argument the pipeline keeps its view. For zoom
-// sweeps and frame checks that try many views on one loaded pipeline.
+// fov_degrees), the tone settings (constant_tone, dark_tone, max_point_size, smooth_slope,
+// relevance_update), lights and ambient, colours (background, paper, ink), silhouettes and
+// their width, and the stroke settings (quality, tolerances, LOD, nudge). The other fields of
+// `view` (sizes, budgets, skinning) are ignored. `view` is resolved like pipeline_init's
+// config; on invalid_argument the pipeline keeps its settings. Per-frame changes of an
+// embedded character go through here too (the C API's stipple_player_set_*).
 [[nodiscard]] Status pipeline_set_view(Pipeline* p, const FrameConfig& view);
 
 // Points of the last frame: baked ones, then the run-time refinement's.

@@ -285,9 +285,8 @@ void classify_vertices(RefinementMesh* r, const MeshView& mesh, const float* pos
         r->vertex[i].outside = uint32_t(c.x < -c.w) | uint32_t(c.x > c.w) << 1 |
                                uint32_t(c.y < -c.w) << 2 | uint32_t(c.y > c.w) << 3 |
                                uint32_t(c.z < -c.w) << 4 | uint32_t(c.z > c.w) << 5;
-        const float lit = glm::dot(n, params.light_direction);
-        r->vertex[i].need = n_dot_v > 0.0f ? n_dot_v * ink.at(lit) : 0.0f;
-        r->vertex[i].need_back = n_dot_v < 0.0f ? -n_dot_v * ink.at(-lit) : 0.0f;
+        r->vertex[i].need = n_dot_v > 0.0f ? n_dot_v * ink.at(lighting(params, n)) : 0.0f;
+        r->vertex[i].need_back = n_dot_v < 0.0f ? -n_dot_v * ink.at(lighting(params, -n)) : 0.0f;
     }
 }
 

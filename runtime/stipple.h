@@ -166,6 +166,30 @@ void stipple_player_draw_into(stipple_player* player, const stipple_app_view* vi
 stipple_result stipple_orbit_camera(const stipple_asset* asset, const stipple_player_desc* desc,
                                     float view[16], float projection[16]);
 
+/* Settings that change between frames without re-creating the player (each is resolved like
+ * the desc: STIPPLE_ERROR_INVALID_ARGUMENT naming the value out of range, and then nothing
+ * changes). */
+typedef struct stipple_light {
+    float direction[3]; /* toward the light; any non-zero length */
+    float intensity;    /* in [0, 16] */
+    int world_space;    /* 0: camera space (turns with the camera), 1: world space */
+} stipple_light;
+/* Up to 4 directional lights plus ambient in [0, 1]; a point's lighting is ambient + the sum of
+ * intensity * max(N.L, 0), clamped to 1, and its tone runs from dark_tone (unlit) to white.
+ * count 0: ambient alone. The default: one camera-space key light from the upper left. */
+stipple_result stipple_player_set_lights(stipple_player* player, const stipple_light* lights,
+                                         int count, float ambient);
+/* Colours as 0xRRGGBB: the body (paper), dots and silhouettes (ink), the player's own image's
+ * background. */
+stipple_result stipple_player_set_colours(stipple_player* player, uint32_t paper_rgb,
+                                          uint32_t ink_rgb, uint32_t background_rgb);
+/* Silhouette lines on or off, and their width in pixels ([0.5, 16]; 0 keeps the width). */
+stipple_result stipple_player_set_silhouettes(stipple_player* player, int on, float width);
+/* Tone: lighting (use_constant_tone 0) or a constant tone in [0, 1]; the largest dot in
+ * pixels ([0.5, 32]; 0 keeps it). */
+stipple_result stipple_player_set_tone(stipple_player* player, int use_constant_tone, float tone,
+                                       float max_point_size);
+
 /* width * height * 4 bytes, bottom row first (GL order). */
 void stipple_player_read_rgba(stipple_player* player, uint8_t* rgba);
 uint32_t stipple_player_points_drawn(const stipple_player* player);

@@ -111,6 +111,15 @@ stipple::AnimationState animation_state(int clip, float time, int clip2, float t
     return state;
 }
 
+void rgb_to_floats(uint32_t rgb, float* out) {
+    for (int k = 0; k < 3; ++k) out[k] = float((rgb >> (16 - 8 * k)) & 0xFF) / 255.0f;
+}
+
+// Applies per-frame settings: resolved and range-checked, all or nothing.
+stipple_result set_view(stipple_player* p, const stipple::FrameConfig& c) {
+    return from_status(stipple::pipeline_set_view(&p->pipeline, c));
+}
+
 // The inverse of frame_config_of for a resolved config: every field explicit.
 void desc_of(const stipple::FrameConfig& c, stipple_player_desc* d) {
     d->width = c.width;
@@ -279,6 +288,49 @@ stipple_result stipple_orbit_camera(const stipple_asset* asset, const stipple_pl
     std::memcpy(view, glm::value_ptr(cam.view), 16 * sizeof(float));
     std::memcpy(projection, glm::value_ptr(cam.projection), 16 * sizeof(float));
     return STIPPLE_OK;
+}
+
+stipple_result stipple_player_set_lights(stipple_player* p, const stipple_light* lights, int count,
+                                         float ambient) {
+    if (!p || (count > 0 && !lights)) return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "NULL argument");
+    stipple::FrameConfig c = p->pipeline.config;
+    if (count < 0 || count > stipple::kMaxLights)
+        return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "light count outside [0, 4]");
+    c.light_count = count;
+    c.ambient = ambient;
+    for (int i = 0; i < count; ++i) {
+        for (int k = 0; k < 3; ++k) c.lights[i].direction[k] = lights[i].direction[k];
+        c.lights[i].intensity = lights[i].intensity;
+        c.lights[i].camera_space = lights[i].world_space == 0;
+    }
+    return set_view(p, c);
+}
+
+stipple_result stipple_player_set_colours(stipple_player* p, uint32_t paper, uint32_t ink,
+                                          uint32_t background) {
+    if (!p) return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "NULL argument");
+    stipple::FrameConfig c = p->pipeline.config;
+    rgb_to_floats(paper, c.paper);
+    rgb_to_floats(ink, c.ink);
+    rgb_to_floats(background, c.background);
+    return set_view(p, c);
+}
+
+stipple_result stipple_player_set_silhouettes(stipple_player* p, int on, float width) {
+    if (!p) return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "NULL argument");
+    stipple::FrameConfig c = p->pipeline.config;
+    c.silhouettes = on != 0;
+    if (width != 0.0f) c.line_width = width;
+    return set_view(p, c);
+}
+
+stipple_result stipple_player_set_tone(stipple_player* p, int use_constant_tone, float tone,
+                                       float max_point_size) {
+    if (!p) return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "NULL argument");
+    stipple::FrameConfig c = p->pipeline.config;
+    c.constant_tone = use_constant_tone ? tone : stipple::kLightingTone;
+    if (max_point_size != 0.0f) c.max_point_size = max_point_size;
+    return set_view(p, c);
 }
 
 void stipple_player_read_rgba(stipple_player* p, uint8_t* rgba) {

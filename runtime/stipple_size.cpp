@@ -39,7 +39,6 @@ void size_stipples(uint32_t count, const float* positions, const float* normals,
     const glm::vec4 row_w(m[0][3], m[1][3], m[2][3], m[3][3]);
     const float focal = focal_pixels(params);
     const InkTable table(params);
-    const glm::vec3 l = params.light_direction;
     for (uint32_t i = 0; i < count; ++i) {
         const glm::vec3 p(positions[i * 3], positions[i * 3 + 1], positions[i * 3 + 2]);
         const glm::vec3 n(normals[i * 3], normals[i * 3 + 1], normals[i * 3 + 2]);
@@ -52,7 +51,7 @@ void size_stipples(uint32_t count, const float* positions, const float* normals,
         }
         const float r_px = radius[i] * focal / w;
         const float region_px = kRegionPerRadiusSquared * r_px * r_px * n_dot_v;  // §3.1.2
-        const float ink = table.at(glm::dot(n, l));
+        const float ink = table.at(lighting(params, n));
         out_size[i] = smooth_point_size(ink, region_px, params.max_point_size, params.smooth_slope);
     }
 }

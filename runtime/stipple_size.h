@@ -16,7 +16,12 @@ struct SizeParams {
     float max_point_size = kFrameSettings.max_point_size.fallback;  // MaximumPtSize, pixels
     float smooth_slope = kFrameSettings.smooth_slope.fallback;      // Alg. 3.2's smoothSlope, > 1
     float constant_tone = kFrameSettings.constant_tone.fallback;    // in [0,1]; < 0: Lambert
-    glm::vec3 light_direction = glm::vec3(0.0f, 0.0f, 1.0f);        // towards the light, unit
+    // Directional lights in the points' space (towards the light, unit) and their intensities,
+    // plus ambient: lighting(n) = ambient + sum intensity max(N.L, 0), clamped to [0, 1].
+    int light_count = 1;
+    glm::vec3 light_direction[kMaxLights] = {glm::vec3(0.0f, 0.0f, 1.0f)};
+    float light_intensity[kMaxLights] = {1.0f};
+    float ambient = 0.0f;
     // Target tone where N.L <= 0: the darkest tone lighting asks for (thesis §8.4's limit).
     float dark_tone = kFrameSettings.dark_tone.fallback;
     float light_tone = 0.0f;  // target tone where N.L = 1
@@ -28,6 +33,14 @@ struct SizeParams {
     float overlap_gain = 0.46f;
     float overlap_power = 2.6f;
 };
+
+// A normal's lighting under the params' lights, in [0, 1] (1 = fully lit: white).
+inline float lighting(const SizeParams& params, const glm::vec3& n) {
+    float lit = params.ambient;
+    for (int k = 0; k < params.light_count; ++k)
+        lit += params.light_intensity[k] * glm::max(glm::dot(n, params.light_direction[k]), 0.0f);
+    return lit < 1.0f ? lit : 1.0f;
+}
 
 // Pixels per world unit at clip depth w is focal / w.
 float focal_pixels(const SizeParams& params);

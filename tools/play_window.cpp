@@ -59,13 +59,12 @@ struct Kiosk {
     glm::vec3 default_light{0.0f, 0.0f, 1.0f};
 };
 
-// Points the key light along `eye_dir` (eye space): the size rule's world direction and the
-// strokes' eye direction, as setup_camera in runtime/frame_pipeline.cpp derives them.
+// One camera-space key light along `eye_dir` (FrameConfig::lights, set between frames).
 void set_light(Pipeline* p, glm::vec3 eye_dir) {
-    eye_dir = glm::normalize(eye_dir);
-    p->light_eye = eye_dir;
-    p->size_params.light_direction =
-        glm::normalize(glm::vec3(glm::inverse(p->view) * glm::vec4(eye_dir, 0.0f)));
+    FrameConfig view = p->config;
+    view.light_count = 1;
+    view.lights[0] = Light{{eye_dir.x, eye_dir.y, eye_dir.z}, 1.0f, true};
+    (void)pipeline_set_view(p, view);  // a unit direction and intensity 1: always in range
 }
 
 // Brings the pipeline's camera and light to k->state.

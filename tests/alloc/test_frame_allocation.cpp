@@ -10,6 +10,8 @@
 #include <string>
 
 #include "platform/headless_context.h"
+#include "runtime/app_frame.h"
+#include "runtime/camera.h"
 #include "runtime/frame_pipeline.h"
 #include "tests/alloc/alloc_counter.h"
 #include "tests/common/fixtures.h"
@@ -97,6 +99,77 @@ TEST(FrameAllocation, FramesWithStrokesAllocateNothing) {
     EXPECT_EQ(g_allocations.load(), 0);
     EXPECT_GT(most_triangles, 3000u);  // the strokes were tessellated and drawn
     stipple::pipeline_destroy(pipeline.get());
+}
+
+// Three instances of one asset drawn into the application's framebuffer for 1,000 frames,
+// with per-frame setting changes (lights, ink, silhouettes) between them: no allocation.
+TEST(FrameAllocation, ThreeInstancesInTheApplicationsFrameAllocateNothing) {
+    stipple::Asset asset;
+    std::string error;
+    ASSERT_TRUE(stipple::test::load_baked(
+        stipple::test::baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 5000"), &asset,
+        &error))
+        << error;
+    stipple::test::HeadlessGl gl;
+    ASSERT_TRUE(gl.open(&error)) << error;
+    const stipple::GlApi& g = gl.gl();
+    constexpr int kW = 96, kH = 72;
+    GLuint fbo = 0, rb[2] = {};
+    g.GenFramebuffers(1, &fbo);
+    g.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    g.GenRenderbuffers(2, rb);
+    g.BindRenderbuffer(GL_RENDERBUFFER, rb[0]);
+    g.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, kW, kH);
+    g.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[0]);
+    g.BindRenderbuffer(GL_RENDERBUFFER, rb[1]);
+    g.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, kW, kH);
+    g.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
+    stipple::FrameConfig config;
+    config.width = kW;
+    config.height = kH;
+    std::unique_ptr<stipple::Pipeline> instances[3];
+    for (auto& p : instances) {
+        p = std::make_unique<stipple::Pipeline>();
+        ASSERT_TRUE(stipple::pipeline_init(p.get(), asset, g, config).ok());
+    }
+    const stipple::OrbitCamera cam = stipple::orbit_camera(asset, instances[0]->config, nullptr);
+    stipple::AppView view;
+    view.view = cam.view;
+    view.projection = cam.projection;
+    view.viewport[2] = kW;
+    view.viewport[3] = kH;
+    // The first draw into the application's frame has the GL driver compile its pass variants
+    // (llvmpipe allocates for that, through this counter too): once, before counting.
+    for (auto& p : instances) stipple::pipeline_draw_into(p.get(), {}, view, nullptr);
+    g_allocations = 0;
+    g_counting = true;
+    uint32_t drawn = 0;
+    for (int f = 0; f < 1000; ++f) {
+        g.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+        g.DepthMask(GL_TRUE);
+        g.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        for (int i = 0; i < 3; ++i) {
+            stipple::FrameConfig settings = instances[i]->config;
+            settings.ink[0] = float(f % 2);
+            settings.silhouettes = f % 3 != 0;
+            settings.lights[0].direction[0] = float(f % 5) - 2.0f;
+            ASSERT_TRUE(stipple::pipeline_set_view(instances[i].get(), settings).ok());
+            view.model[3][0] = 0.3f * float(i - 1);
+            stipple::AnimationState state;
+            state.clip = 0;
+            state.time = float(f) / 30.0f + float(i);
+            stipple::pipeline_draw_into(instances[i].get(), state, view, nullptr);
+            drawn += instances[i]->points_drawn;
+        }
+    }
+    g.Finish();
+    g_counting = false;
+    EXPECT_EQ(g_allocations.load(), 0);
+    EXPECT_GT(drawn, 3000u * 20u);  // real frames
+    for (auto& p : instances) stipple::pipeline_destroy(p.get());
+    g.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    g.DeleteFramebuffers(1, &fbo);
+    g.DeleteRenderbuffers(2, rb);
 }
 
 }  // namespace

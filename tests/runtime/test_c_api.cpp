@@ -176,4 +176,58 @@ TEST(CApi, DrawsIntoTheApplicationsFramebuffer) {
     stipple_asset_destroy(asset);
 }
 
+// Per-frame settings through the C API, on one player, between draws: ink colour, lights
+// (a world-space light from behind darkens the front), silhouettes, constant tone; a bad
+// value is refused by name and changes nothing.
+TEST(CApi, PerFrameSettingsWithoutRecreation) {
+    const std::string path = baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 20000");
+    HeadlessGl gl;
+    std::string error;
+    ASSERT_TRUE(gl.open(&error)) << error;
+    stipple_asset* asset = nullptr;
+    ASSERT_EQ(stipple_asset_load_file(path.c_str(), &asset), STIPPLE_OK);
+    stipple_player_desc desc = {};
+    desc.width = 320;
+    desc.height = 240;
+    desc.get_proc_address = stipple::platform::proc_loader(gl.context());
+    stipple_player* player = nullptr;
+    ASSERT_EQ(stipple_player_create(asset, &desc, &player), STIPPLE_OK) << stipple_last_error();
+    std::vector<uint8_t> rgba(320 * 240 * 4);
+    auto count = [&](auto pred) {
+        stipple_player_draw(player, 0, 0.5f);
+        stipple_player_read_rgba(player, rgba.data());
+        size_t n = 0;
+        for (size_t i = 0; i < rgba.size(); i += 4) n += pred(&rgba[i]);
+        return n;
+    };
+    auto dark = [](const uint8_t* p) { return p[0] < 100 && p[1] < 100 && p[2] < 100; };
+    auto red = [](const uint8_t* p) { return p[0] > 150 && p[1] < 60 && p[2] < 60; };
+    const size_t dark_key_light = count(dark);
+    EXPECT_GT(dark_key_light, 400u);
+    EXPECT_EQ(count(red), 0u);
+
+    ASSERT_EQ(stipple_player_set_colours(player, 0xFFFFFF, 0xE01010, 0xFFFFFF), STIPPLE_OK);
+    EXPECT_GT(count(red), 400u) << "the ink turned red";
+    ASSERT_EQ(stipple_player_set_colours(player, 0xFFFFFF, 0x000000, 0xFFFFFF), STIPPLE_OK);
+
+    stipple_light behind = {{0.0f, 0.0f, -1.0f}, 1.0f, 1};  // world space, from behind
+    ASSERT_EQ(stipple_player_set_lights(player, &behind, 1, 0.0f), STIPPLE_OK);
+    const size_t dark_behind = count(dark);
+    EXPECT_GT(dark_behind, dark_key_light * 5 / 4) << "lit from behind, the front darkens";
+    stipple_light bright = {{0.0f, 1.0f, 0.0f}, 1.0f, 0};
+    ASSERT_EQ(stipple_player_set_lights(player, &bright, 1, 1.0f), STIPPLE_OK);  // ambient 1
+    ASSERT_EQ(stipple_player_set_silhouettes(player, 0, 0.0f), STIPPLE_OK);
+    EXPECT_LT(count(dark), dark_key_light / 4) << "fully lit, no outline: almost no ink";
+
+    stipple_light zero = {{0.0f, 0.0f, 0.0f}, 1.0f, 0};
+    EXPECT_EQ(stipple_player_set_lights(player, &zero, 1, 0.0f), STIPPLE_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::strstr(stipple_last_error(), "direction"), nullptr) << stipple_last_error();
+    EXPECT_EQ(stipple_player_set_tone(player, 1, 1.5f, 0.0f), STIPPLE_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::strstr(stipple_last_error(), "constant_tone"), nullptr);
+    ASSERT_EQ(stipple_player_set_tone(player, 1, 0.5f, 0.0f), STIPPLE_OK);
+    EXPECT_GT(count(dark), dark_key_light / 2) << "constant tone 0.5 ignores the lights";
+    stipple_player_destroy(player);
+    stipple_asset_destroy(asset);
+}
+
 }  // namespace
