@@ -91,6 +91,40 @@ typedef struct stipple_player_desc {
 /* One line describing the last failure on this thread ("" if none). */
 const char* stipple_last_error(void);
 
+/* Which check of the last failed asset load on this thread failed (the C++ loader's
+ * stipple::LoadError, docs/errors.md): 0 none, then in this order. */
+typedef enum stipple_load_error {
+    STIPPLE_LOAD_OK = 0,
+    STIPPLE_LOAD_IO_ERROR,
+    STIPPLE_LOAD_BAD_MAGIC,
+    STIPPLE_LOAD_UNSUPPORTED_VERSION,
+    STIPPLE_LOAD_WRONG_ENDIANNESS,
+    STIPPLE_LOAD_TRUNCATED,
+    STIPPLE_LOAD_CHECKSUM_MISMATCH,
+    STIPPLE_LOAD_MISSING_SECTION,
+    STIPPLE_LOAD_MALFORMED_SECTION,
+    STIPPLE_LOAD_OUT_OF_RANGE,
+    STIPPLE_LOAD_BAD_VALUE,
+    STIPPLE_LOAD_OUT_OF_MEMORY,
+    STIPPLE_LOAD_INVALID_ARGUMENT,
+    STIPPLE_LOAD_COUNT_OVER_LIMIT,
+    STIPPLE_LOAD_COUNT_EXCEEDS_DATA,
+    STIPPLE_LOAD_DECODED_SIZE_LIMIT,
+    STIPPLE_LOAD_ZERO_COUNT,
+    STIPPLE_LOAD_BAD_NORMAL,
+    STIPPLE_LOAD_BAD_SKIN_WEIGHT,
+    STIPPLE_LOAD_BAD_RADIUS
+} stipple_load_error;
+stipple_load_error stipple_last_load_error(void);
+
+/* A logger in place of silence: every failure's one-line message (level 2, the same text as
+ * stipple_last_error) and warnings (level 1: a GL error seen by check_gl_errors, strokes left
+ * out by a full stroke budget) go to `fn` with `user`, on the calling thread. NULL fn: no
+ * logging (the default; the library never writes to stdout or stderr). Not thread-safe to
+ * change while other threads call the library. */
+typedef void (*stipple_log_fn)(int level, const char* message, void* user);
+void stipple_set_logger(stipple_log_fn fn, void* user);
+
 /* Loading validates every byte before use and fails with STIPPLE_ERROR_BAD_ASSET, naming the
  * check in stipple_last_error() (docs/errors.md lists them all), on a truncated, corrupted or
  * hostile asset. NULL path, data or out, or size 0: STIPPLE_ERROR_INVALID_ARGUMENT. */

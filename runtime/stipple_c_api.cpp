@@ -18,6 +18,7 @@ struct stipple_asset {
 
 struct stipple_player {
     stipple::Pipeline pipeline;
+    bool warned_gl = false, warned_strokes = false;  // each warning logged once
 };
 
 namespace {
@@ -33,9 +34,21 @@ static_assert(int(stipple::StatusCode::gl_error) == STIPPLE_ERROR_GL, "");
 static_assert(int(stipple::StatusCode::out_of_memory) == STIPPLE_ERROR_OUT_OF_MEMORY, "");
 
 thread_local char g_error[256] = "";
+thread_local stipple_load_error g_load_error = STIPPLE_LOAD_OK;
+stipple_log_fn g_log = nullptr;
+void* g_log_user = nullptr;
+
+// stipple::LoadError maps 1:1 onto stipple_load_error.
+static_assert(int(stipple::LoadError::bad_radius) == STIPPLE_LOAD_BAD_RADIUS, "");
+static_assert(int(stipple::LoadError::checksum_mismatch) == STIPPLE_LOAD_CHECKSUM_MISMATCH, "");
+
+void log_message(int level, const char* message) {
+    if (g_log) g_log(level, message, g_log_user);
+}
 
 stipple_result fail(stipple_result result, const char* message) {
     std::snprintf(g_error, sizeof(g_error), "%s", message);
+    log_message(2, g_error);
     return result;
 }
 
@@ -44,13 +57,34 @@ stipple_result from_status(const stipple::Status& st) {
     return fail(stipple_result(st.code), st.message);
 }
 
+// Warnings after a draw, each once per player: the first GL error the checks saw, and
+// strokes left out by a full stroke budget.
+void warn_after_draw(stipple_player* p) {
+    if (!g_log) return;
+    const stipple::GlErrorLog& e = stipple::pipeline_gl_errors(p->pipeline);
+    if (e.count > 0 && !p->warned_gl) {
+        p->warned_gl = true;
+        char m[160];
+        std::snprintf(m, sizeof(m), "GL error %s after the %s pass",
+                      stipple::gl_error_name(e.first_error), e.first_pass ? e.first_pass : "?");
+        log_message(1, m);
+    }
+    if (p->pipeline.strokes.mesh.overflow && !p->warned_strokes) {
+        p->warned_strokes = true;
+        log_message(1, "stroke budget full: strokes left out (raise stroke_vertex_budget)");
+    }
+}
+
 template <typename Load>
 stipple_result load(stipple_asset** out, Load&& load_into) {
     if (!out) return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "out is NULL");
     *out = nullptr;
+    g_load_error = STIPPLE_LOAD_OK;
     stipple_asset* a = new (std::nothrow) stipple_asset();
     if (!a) return fail(STIPPLE_ERROR_OUT_OF_MEMORY, "out of memory");
-    stipple_result r = from_status(load_into(&a->asset));
+    const stipple::Status st = load_into(&a->asset);
+    g_load_error = stipple_load_error(st.error);
+    stipple_result r = from_status(st);
     if (r != STIPPLE_OK) {
         delete a;
         return r;
@@ -154,6 +188,15 @@ void desc_of(const stipple::FrameConfig& c, stipple_player_desc* d) {
 
 extern "C" {
 
+stipple_load_error stipple_last_load_error(void) {
+    return g_load_error;
+}
+
+void stipple_set_logger(stipple_log_fn fn, void* user) {
+    g_log = fn;
+    g_log_user = user;
+}
+
 const char* stipple_last_error(void) {
     return g_error;
 }
@@ -245,7 +288,9 @@ stipple_result stipple_player_create(const stipple_asset* asset, const stipple_p
 }
 
 void stipple_player_draw(stipple_player* p, int clip, float time_seconds) {
-    if (p) stipple::pipeline_frame(&p->pipeline, clip, time_seconds, nullptr);
+    if (!p) return;
+    stipple::pipeline_frame(&p->pipeline, clip, time_seconds, nullptr);
+    warn_after_draw(p);
 }
 
 void stipple_player_draw_blend(stipple_player* p, int clip, float time, int clip2, float time2,
@@ -253,6 +298,7 @@ void stipple_player_draw_blend(stipple_player* p, int clip, float time, int clip
     if (!p) return;
     stipple::pipeline_frame(&p->pipeline, animation_state(clip, time, clip2, time2, weight2),
                             nullptr);
+    warn_after_draw(p);
 }
 
 void stipple_player_draw_into(stipple_player* p, const stipple_app_view* view, int clip, float time,
@@ -275,6 +321,7 @@ void stipple_player_draw_into(stipple_player* p, const stipple_app_view* view, i
     for (int k = 0; k < 4; ++k) v.viewport[k] = view->viewport[k];
     stipple::pipeline_draw_into(&p->pipeline, animation_state(clip, time, clip2, time2, weight2), v,
                                 nullptr);
+    warn_after_draw(p);
 }
 
 stipple_result stipple_orbit_camera(const stipple_asset* asset, const stipple_player_desc* desc,

@@ -2,7 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "platform/headless_context.h"
@@ -226,6 +229,61 @@ TEST(CApi, PerFrameSettingsWithoutRecreation) {
     EXPECT_NE(std::strstr(stipple_last_error(), "constant_tone"), nullptr);
     ASSERT_EQ(stipple_player_set_tone(player, 1, 0.5f, 0.0f), STIPPLE_OK);
     EXPECT_GT(count(dark), dark_key_light / 2) << "constant tone 0.5 ignores the lights";
+    stipple_player_destroy(player);
+    stipple_asset_destroy(asset);
+}
+
+// The logger hook gets every failure's message and the warnings; loads keep the C++ loader's
+// distinct error codes.
+TEST(CApi, LoggerAndDistinctLoadErrors) {
+    struct Log {
+        std::vector<std::pair<int, std::string>> lines;
+    } log;
+    stipple_set_logger(
+        [](int level, const char* message, void* user) {
+            static_cast<Log*>(user)->lines.emplace_back(level, message);
+        },
+        &log);
+    stipple_asset* asset = nullptr;
+    EXPECT_EQ(stipple_asset_load_file("/nonexistent/x.stip", &asset), STIPPLE_ERROR_IO);
+    EXPECT_EQ(stipple_last_load_error(), STIPPLE_LOAD_IO_ERROR);
+    ASSERT_EQ(log.lines.size(), 1u);
+    EXPECT_EQ(log.lines[0].first, 2);
+    EXPECT_EQ(log.lines[0].second, stipple_last_error());
+
+    // A flipped byte inside a section: the checksum check names it.
+    const std::string path = baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 5000");
+    std::ifstream in(path, std::ios::binary);
+    std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_GT(bytes.size(), 4096u);
+    bytes[bytes.size() / 2] ^= 0x5A;
+    EXPECT_EQ(stipple_asset_load_memory(bytes.data(), bytes.size(), &asset),
+              STIPPLE_ERROR_BAD_ASSET);
+    EXPECT_EQ(stipple_last_load_error(), STIPPLE_LOAD_CHECKSUM_MISMATCH) << stipple_last_error();
+
+    // A warning once: fur at quality 2 overflows the smallest stroke budget.
+    const std::string fur =
+        baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 20000 --fur 3000");
+    HeadlessGl gl;
+    std::string error;
+    ASSERT_TRUE(gl.open(&error)) << error;
+    ASSERT_EQ(stipple_asset_load_file(fur.c_str(), &asset), STIPPLE_OK);
+    EXPECT_EQ(stipple_last_load_error(), STIPPLE_LOAD_OK);
+    stipple_player_desc desc = {};
+    desc.width = 320;
+    desc.height = 240;
+    desc.stroke_vertex_budget = 1024;
+    desc.stroke_quality = STIPPLE_STROKE_QUALITY_2;
+    desc.get_proc_address = stipple::platform::proc_loader(gl.context());
+    stipple_player* player = nullptr;
+    ASSERT_EQ(stipple_player_create(asset, &desc, &player), STIPPLE_OK);
+    log.lines.clear();
+    stipple_player_draw(player, 0, 0.1f);
+    stipple_player_draw(player, 0, 0.2f);
+    ASSERT_EQ(log.lines.size(), 1u);
+    EXPECT_EQ(log.lines[0].first, 1);
+    EXPECT_NE(log.lines[0].second.find("stroke budget"), std::string::npos);
+    stipple_set_logger(nullptr, nullptr);
     stipple_player_destroy(player);
     stipple_asset_destroy(asset);
 }
