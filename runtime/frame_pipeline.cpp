@@ -28,12 +28,6 @@ double ms_since(Clock::time_point* t) {
     return ms;
 }
 
-template <typename T>
-bool alloc(std::unique_ptr<T[]>* out, size_t count) {
-    out->reset(new (std::nothrow) T[count > 0 ? count : 1]);
-    return bool(*out);
-}
-
 // The jobs of a frame run on spans pipeline_init sized from the asset's counts, and the asset
 // passed load validation, so a job that fails its own validation is a bug in the pipeline,
 // not bad input. Debug builds stop on it; release builds skip that stage (its output keeps
@@ -330,15 +324,41 @@ RendererConfig renderer_config(const Pipeline& p) {
 
 }  // namespace
 
-Status pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const FrameConfig& config) {
+namespace {
+
+// Everything but GL: settings, every buffer (from the current allocator), the rest pose.
+Status init_memory(Pipeline* p, const Asset& asset, const FrameConfig& config) {
     *p = Pipeline();
     p->asset = &asset;
     Status st = resolve_frame_config(config, &p->config);
     if (st.ok()) st = alloc_pose_buffers(p);
     if (st.ok()) st = alloc_frame_buffers(p);
     if (st.ok()) st = place_rest_pose(p);
+    if (st.ok()) st = stroke_stage_init(&p->strokes, asset, p->config);
+    return st;
+}
+
+}  // namespace
+
+size_t pipeline_memory_bytes(const Asset& asset, const FrameConfig& config) {
+    CountingArena arena;
+    {
+        AllocatorScope scope(counting_allocator(&arena));
+        std::unique_ptr<Pipeline> p(new (std::nothrow) Pipeline());
+        if (!p) return 0;
+        const bool ok = init_memory(p.get(), asset, config).ok();
+        pipeline_destroy(p.get());
+        if (!ok) return 0;
+    }
+    return arena.bytes;
+}
+
+Status pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const FrameConfig& config,
+                     const Allocator& allocator) {
+    AllocatorScope scope(allocator);
+    Status st = init_memory(p, asset, config);
     if (st.ok()) st = renderer_init(&p->renderer, gl, renderer_config(*p));
-    if (st.ok()) st = stroke_stage_init(&p->strokes, asset, gl, p->config);
+    if (st.ok()) st = stroke_stage_init_gl(&p->strokes, gl, p->config);
     if (!st.ok()) {
         pipeline_destroy(p);
         return st;

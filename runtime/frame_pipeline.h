@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 #include <memory>
 
+#include "runtime/memory.h"
 #include "runtime/asset.h"
 #include "runtime/frame_config.h"
 #include "runtime/point_refinement.h"
@@ -47,34 +48,34 @@ struct Pipeline {
 
     // Two sampled poses (clip and blend clip) and their blend, each node_count; a sampling
     // context per slot (cursors: the largest clip's channel count); morph weights per slot.
-    std::unique_ptr<anim::Trs[]> locals[3];
-    std::unique_ptr<uint32_t[]> cursors[2];
+    Buffer<anim::Trs> locals[3];
+    Buffer<uint32_t> cursors[2];
     anim::SamplingContext contexts[2];
-    std::unique_ptr<float[]> morph_weights[3];                  // morph slot count each
-    std::unique_ptr<anim::DqsJoint[]> dq_joints;                // joint_count
-    std::unique_ptr<glm::mat4[]> models;                        // node_count
-    std::unique_ptr<glm::mat4[]> skin_matrices;                 // joint_count
-    std::unique_ptr<float[]> vertex_positions, vertex_normals;  // 3 * vertex_count
+    Buffer<float> morph_weights[3];                  // morph slot count each
+    Buffer<anim::DqsJoint> dq_joints;                // joint_count
+    Buffer<glm::mat4> models;                        // node_count
+    Buffer<glm::mat4> skin_matrices;                 // joint_count
+    Buffer<float> vertex_positions, vertex_normals;  // 3 * vertex_count
     // Points of the frame: the baked hierarchy (point_count) followed by the run-time
     // refinement's extra points (up to refinement_budget); capacity = point_count + budget.
     uint32_t point_capacity = 0;
-    std::unique_ptr<float[]> point_positions, point_normals;  // 3 * capacity
-    std::unique_ptr<float[]> radius_scale;                    // point_count, see relevance_scale()
-    std::unique_ptr<float[]> draw_positions, draw_sizes;      // the dots with a size, compacted
-    std::unique_ptr<float[]> rest_radius;                     // point_count
-    std::unique_ptr<float[]> radius, size;                    // capacity
+    Buffer<float> point_positions, point_normals;  // 3 * capacity
+    Buffer<float> radius_scale;                    // point_count, see relevance_scale()
+    Buffer<float> draw_positions, draw_sizes;      // the dots with a size, compacted
+    Buffer<float> rest_radius;                     // point_count
+    Buffer<float> radius, size;                    // capacity
     RefinementMesh refinement;
     // The refinement's triangles: a triangulation of the baked points when the bake has enough
     // of them (runtime/point_triangulation.h), else the render mesh.
     PointTriangulation point_triangles;
     MeshView refinement_domain;
     bool refine_on_points = false;
-    std::unique_ptr<uint32_t[]> refined_triangle, refined_index;  // budget
+    Buffer<uint32_t> refined_triangle, refined_index;  // budget
     uint32_t refined_count = 0;                                   // extra points in the last frame
     RefinementStats refinement_stats;
-    std::unique_ptr<uint8_t[]> point_double_sided;  // point_count, or null: runtime/double_sided.h
-    std::unique_ptr<uint8_t[]> triangle_front;      // triangle_count
-    std::unique_ptr<float[]> lines;                 // 6 * edge_count
+    Buffer<uint8_t> point_double_sided;  // point_count, or null: runtime/double_sided.h
+    Buffer<uint8_t> triangle_front;      // triangle_count
+    Buffer<float> lines;                 // 6 * edge_count
     uint32_t points_drawn = 0;                      // size > 0 in the last frame
     uint32_t lines_drawn = 0;                       // silhouette lines
     StrokeStage strokes;                            // paintstrokes (empty without STRK)
@@ -83,8 +84,18 @@ struct Pipeline {
 // Resolves `config` (resolve_frame_config: defaults, limits), takes every buffer a frame needs
 // and creates the renderer. Fails with invalid_argument (a setting out of range),
 // out_of_memory or gl_error.
+// Every buffer comes from `allocator` (runtime/memory.h; default: operator new); with a
+// block allocator the block must hold pipeline_memory_bytes(asset, config) bytes (16-byte
+// aligned, or 15 bytes more).
 [[nodiscard]] Status pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl,
-                                   const FrameConfig& config);
+                                   const FrameConfig& config,
+                                   const Allocator& allocator = Allocator());
+
+// The bytes pipeline_init takes from its allocator for `asset` and `config` (every buffer,
+// rounded as a block allocator rounds them), found by running the CPU half of the init with a
+// counting allocator: as slow as that half, no GL needed. 0 if `config` is invalid or memory
+// ran out. Several pipelines over one asset each take this much; the asset is shared.
+size_t pipeline_memory_bytes(const Asset& asset, const FrameConfig& config);
 
 // Poses the mesh as `state` says, then runs every CPU stage and draws. Stage times are added
 // to `times` if it is not null.

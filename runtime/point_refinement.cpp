@@ -12,12 +12,6 @@ namespace stipple {
 
 namespace {
 
-template <typename T>
-bool alloc(std::unique_ptr<T[]>* out, size_t count) {
-    out->reset(new (std::nothrow) T[count > 0 ? count : 1]);
-    return bool(*out);
-}
-
 struct Traversal {
     const RefinementMesh* r;
     const MeshView* mesh;
@@ -176,8 +170,8 @@ Status refinement_init(RefinementMesh* r, const MeshView& mesh, const PointsView
     *r = RefinementMesh();
     const uint32_t n = mesh.triangle_count;
     r->triangle_count = n;
-    std::unique_ptr<float[]> longest(new (std::nothrow) float[size_t(n) + 1]);
-    std::unique_ptr<float[]> first(new (std::nothrow) float[size_t(n) * 3 + 3]);
+    Buffer<float> longest = make_buffer<float>(size_t(n) + 1);
+    Buffer<float> first = make_buffer<float>(size_t(n) * 3 + 3);
     if (!longest || !first || !alloc(&r->bind_area, n) || !alloc(&r->frame, size_t(n) * 3) ||
         !alloc(&r->root_depth, n) || !alloc(&r->density, n) || !alloc(&r->phase, n) ||
         !alloc(&r->fade, n) || !alloc(&r->vertex, mesh.vertex_count))

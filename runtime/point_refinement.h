@@ -34,6 +34,7 @@
 #include <glm/glm.hpp>
 #include <memory>
 
+#include "runtime/memory.h"
 #include "runtime/asset.h"
 #include "runtime/refinement_sequence.h"
 #include "runtime/stipple_size.h"
@@ -51,13 +52,13 @@ struct RefinementVertex {
 // Per-triangle data computed once at load from the bind pose, and per-vertex scratch.
 struct RefinementMesh {
     uint32_t triangle_count = 0;
-    std::unique_ptr<float[]> bind_area;          // per triangle
-    std::unique_ptr<float[]> frame;              // per triangle: 2D isometric corners B.x, C.x, C.y
-    std::unique_ptr<uint8_t[]> root_depth;       // longest-edge bisections before the sequence
-    std::unique_ptr<float[]> density;            // baked points per unit bind area, per triangle
-    std::unique_ptr<float[]> phase;              // rank offset of the first extra point, (0, 1]
-    std::unique_ptr<float[]> fade;               // per frame: size factor of the baked points here
-    std::unique_ptr<RefinementVertex[]> vertex;  // per vertex, rewritten every frame
+    Buffer<float> bind_area;          // per triangle
+    Buffer<float> frame;              // per triangle: 2D isometric corners B.x, C.x, C.y
+    Buffer<uint8_t> root_depth;       // longest-edge bisections before the sequence
+    Buffer<float> density;            // baked points per unit bind area, per triangle
+    Buffer<float> phase;              // rank offset of the first extra point, (0, 1]
+    Buffer<float> fade;               // per frame: size factor of the baked points here
+    Buffer<RefinementVertex> vertex;  // per vertex, rewritten every frame
     float finest_density = 0.0f;  // rho0: baked points per unit bind area, finest level
     bool hand_over = true;        // baked points fade in close-ups (mesh domain)
 };

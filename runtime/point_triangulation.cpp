@@ -1,3 +1,4 @@
+#include "runtime/memory.h"
 #include "runtime/point_triangulation.h"
 
 #include <algorithm>
@@ -56,11 +57,11 @@ struct Candidate {
 // are never bridged, so no triangle spans the air between parts that move apart.
 struct SurfaceReach {
     const MeshView* mesh = nullptr;
-    std::unique_ptr<uint32_t[]> weld;         // vertex -> canonical vertex (same position)
-    std::unique_ptr<uint32_t[]> start, tris;  // canonical vertex -> its triangles (CSR)
-    std::unique_ptr<uint32_t[]> stamp;        // per triangle: last point that reached it
-    std::unique_ptr<uint32_t[]> queue;        // per triangle
-    std::unique_ptr<float[]> sphere;          // per triangle: centroid xyz, radius
+    Buffer<uint32_t> weld;         // vertex -> canonical vertex (same position)
+    Buffer<uint32_t> start, tris;  // canonical vertex -> its triangles (CSR)
+    Buffer<uint32_t> stamp;        // per triangle: last point that reached it
+    Buffer<uint32_t> queue;        // per triangle
+    Buffer<float> sphere;          // per triangle: centroid xyz, radius
 
     glm::vec3 vertex(uint32_t v) const {
         return glm::vec3(mesh->positions[v * 3], mesh->positions[v * 3 + 1],
@@ -70,13 +71,13 @@ struct SurfaceReach {
     bool build(const MeshView& m) {
         mesh = &m;
         const uint32_t nv = m.vertex_count, nt = m.triangle_count;
-        std::unique_ptr<uint32_t[]> order(new (std::nothrow) uint32_t[nv + 1]);
-        weld.reset(new (std::nothrow) uint32_t[nv + 1]);
-        start.reset(new (std::nothrow) uint32_t[nv + 2]);
-        tris.reset(new (std::nothrow) uint32_t[size_t(nt) * 3 + 1]);
-        stamp.reset(new (std::nothrow) uint32_t[nt + 1]);
-        queue.reset(new (std::nothrow) uint32_t[nt + 1]);
-        sphere.reset(new (std::nothrow) float[size_t(nt) * 4 + 4]);
+        Buffer<uint32_t> order = make_buffer<uint32_t>(nv + 1);
+        weld = make_buffer<uint32_t>(nv + 1);
+        start = make_buffer<uint32_t>(nv + 2);
+        tris = make_buffer<uint32_t>(size_t(nt) * 3 + 1);
+        stamp = make_buffer<uint32_t>(nt + 1);
+        queue = make_buffer<uint32_t>(nt + 1);
+        sphere = make_buffer<float>(size_t(nt) * 4 + 4);
         if (!order || !weld || !start || !tris || !stamp || !queue || !sphere) return false;
         for (uint32_t v = 0; v < nv; ++v) order[v] = v;
         auto less = [&](uint32_t a, uint32_t b) {
@@ -91,7 +92,7 @@ struct SurfaceReach {
         for (uint32_t t = 0; t < nt; ++t)
             for (int c = 0; c < 3; ++c) ++start[weld[m.indices[size_t(t) * 3 + c]] + 1];
         for (uint32_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-        std::unique_ptr<uint32_t[]> fill(new (std::nothrow) uint32_t[nv + 1]);
+        Buffer<uint32_t> fill = make_buffer<uint32_t>(nv + 1);
         if (!fill) return false;
         std::copy(start.get(), start.get() + nv, fill.get());
         for (uint32_t t = 0; t < nt; ++t) {
@@ -164,7 +165,7 @@ Status triangulate_points(uint32_t count, const float* positions, const float* n
     const float reach = 2.2f * spacing;
     SpatialGrid grid;
     const size_t capacity = size_t(count) * 3;
-    std::unique_ptr<uint32_t[]> tris(new (std::nothrow) uint32_t[capacity * 3]);
+    Buffer<uint32_t> tris = make_buffer<uint32_t>(capacity * 3);
     if (!tris || !grid.build(positions, count, reach, nullptr)) return out_of_memory(count);
     uint32_t made = 0;
     Candidate candidates[kMaxCandidates];

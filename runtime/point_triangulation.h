@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <memory>
 
+#include "runtime/memory.h"
 #include "runtime/asset.h"
 
 namespace stipple {
@@ -31,7 +32,7 @@ double surface_area(const MeshView& mesh);
 
 struct PointTriangulation {
     uint32_t triangle_count = 0;
-    std::unique_ptr<uint32_t[]> indices;  // 3 per triangle, each < the point count
+    Buffer<uint32_t> indices;  // 3 per triangle, each < the point count
 };
 
 // `positions`/`normals`: count points, 3 floats each (bind pose, unit normals); `area`: the

@@ -1,3 +1,4 @@
+#include "runtime/memory.h"
 #include "runtime/refinement_order.h"
 
 #include <algorithm>
@@ -12,11 +13,6 @@ namespace stipple {
 
 namespace {
 
-template <typename T>
-std::unique_ptr<T[]> array(size_t n) {
-    return std::unique_ptr<T[]>(new (std::nothrow) T[n > 0 ? n : 1]);
-}
-
 glm::vec3 point3(const float* p, uint32_t i) {
     return glm::vec3(p[i * 3], p[i * 3 + 1], p[i * 3 + 2]);
 }
@@ -24,7 +20,7 @@ glm::vec3 point3(const float* p, uint32_t i) {
 // Max-heap of triangles keyed by dist, with decrease-key.
 struct Heap {
     uint32_t size = 0;
-    std::unique_ptr<uint32_t[]> item, slot;  // slot[t] = position of t, or ~0u
+    Buffer<uint32_t> item, slot;  // slot[t] = position of t, or ~0u
     const float* key = nullptr;
 
     void swap(uint32_t a, uint32_t b) {
@@ -75,10 +71,10 @@ bool first_point_phases(uint32_t triangle_count, const float* first_points, cons
         const float spacing = float(std::sqrt(total_area / double(baked_count + n)));
         const float reach = 3.0f * spacing;
         SpatialGrid baked_grid, tri_grid;
-        std::unique_ptr<float[]> dist = array<float>(n);
+        Buffer<float> dist = make_buffer<float>(n);
         Heap heap;
-        heap.item = array<uint32_t>(n);
-        heap.slot = array<uint32_t>(n);
+        heap.item = make_buffer<uint32_t>(n);
+        heap.slot = make_buffer<uint32_t>(n);
         heap.key = dist.get();
         if (!dist || !heap.item || !heap.slot ||
             !baked_grid.build(baked, baked_count, reach, nullptr) ||

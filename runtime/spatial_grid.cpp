@@ -1,3 +1,4 @@
+#include "runtime/memory.h"
 #include "runtime/spatial_grid.h"
 
 #include <algorithm>
@@ -7,11 +8,6 @@ namespace stipple {
 
 namespace {
 
-template <typename T>
-std::unique_ptr<T[]> array(size_t n) {
-    return std::unique_ptr<T[]>(new (std::nothrow) T[n > 0 ? n : 1]);
-}
-
 }  // namespace
 
 bool SpatialGrid::build(const float* p, uint32_t n, float cell_size, const float* use) {
@@ -20,9 +16,9 @@ bool SpatialGrid::build(const float* p, uint32_t n, float cell_size, const float
     uint32_t buckets = 1;
     while (buckets < 2 * n && buckets < (1u << 30)) buckets <<= 1;
     mask = buckets - 1;
-    start = array<uint32_t>(size_t(buckets) + 1);
-    items = array<uint32_t>(n);
-    std::unique_ptr<uint32_t[]> of = array<uint32_t>(n), fill = array<uint32_t>(buckets);
+    start = make_buffer<uint32_t>(size_t(buckets) + 1);
+    items = make_buffer<uint32_t>(n);
+    Buffer<uint32_t> of = make_buffer<uint32_t>(n), fill = make_buffer<uint32_t>(buckets);
     if (!start || !items || !of || !fill) return false;
     std::fill(start.get(), start.get() + buckets + 1, 0u);
     for (uint32_t i = 0; i < n; ++i) {

@@ -7,13 +7,15 @@
 #include <glm/glm.hpp>
 #include <memory>
 
+#include "runtime/memory.h"
+
 namespace stipple {
 
 struct SpatialGrid {
     float cell = 1.0f;
     uint32_t mask = 0;                  // bucket count - 1
-    std::unique_ptr<uint32_t[]> start;  // bucket -> first slot, bucket count + 1
-    std::unique_ptr<uint32_t[]> items;  // point indices sorted by bucket
+    Buffer<uint32_t> start;  // bucket -> first slot, bucket count + 1
+    Buffer<uint32_t> items;  // point indices sorted by bucket
     const float* points = nullptr;      // 3 floats per point
 
     // Cell coordinates saturate at +-2^30 (NaN: 0): a far point or a tiny cell must not

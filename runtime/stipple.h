@@ -85,6 +85,15 @@ typedef struct stipple_player_desc {
     int stroke_vertex_budget;     /* tessellated vertices per frame, in [1024, 8388608]; 0:
                                      262144 (48 bytes each, taken only if the asset has
                                      strokes) */
+    /* Memory: everything a player takes, taken at create. Either an allocator hook (allocate
+     * and release with allocator_user; allocate returns 16-byte aligned memory or NULL), or
+     * one block (memory, memory_size) of at least stipple_player_memory_bytes() bytes, 16-byte
+     * aligned, which must outlive the player; or neither: operator new. */
+    void* (*allocate)(size_t bytes, void* user);
+    void (*release)(void* pointer, void* user);
+    void* allocator_user;
+    void* memory;
+    size_t memory_size;
     stipple_get_proc_fn get_proc_address; /* required */
 } stipple_player_desc;
 
@@ -158,6 +167,10 @@ int stipple_asset_find_clip(const stipple_asset* asset, const char* name_or_inde
  * use_constant_tone) to `out`; get_proc_address is copied. STIPPLE_ERROR_INVALID_ARGUMENT if
  * a value is outside its range. `out` may be `in`. */
 stipple_result stipple_player_desc_resolve(const stipple_player_desc* in, stipple_player_desc* out);
+
+/* The bytes stipple_player_create takes for `asset` with `desc` (its allocator or block must
+ * provide them); players over one asset share the asset's memory. 0 if desc is invalid. */
+size_t stipple_player_memory_bytes(const stipple_asset* asset, const stipple_player_desc* desc);
 
 /* The asset must outlive the player. Fails with STIPPLE_ERROR_INVALID_ARGUMENT (a setting out
  * of range, no get_proc_address), STIPPLE_ERROR_GL or STIPPLE_ERROR_OUT_OF_MEMORY. */

@@ -10,6 +10,7 @@
 #include "runtime/asset.h"
 #include "runtime/camera.h"
 #include "runtime/frame_pipeline.h"
+#include "runtime/memory.h"
 #include "runtime/stipple.h"
 
 struct stipple_asset {
@@ -18,6 +19,8 @@ struct stipple_asset {
 
 struct stipple_player {
     stipple::Pipeline pipeline;
+    stipple::Allocator allocator;  // what the player (and its buffers) came from
+    stipple::BlockArena block;     // the caller's block, when desc.memory is given
     bool warned_gl = false, warned_strokes = false;  // each warning logged once
 };
 
@@ -154,6 +157,33 @@ stipple_result set_view(stipple_player* p, const stipple::FrameConfig& c) {
     return from_status(stipple::pipeline_set_view(&p->pipeline, c));
 }
 
+// A player in memory from desc's allocator or block (or operator new), constructed, with its
+// allocator set for its buffers; nullptr when that memory is not there.
+stipple_player* new_player(const stipple_player_desc& d) {
+    stipple::Allocator a;
+    stipple::BlockArena block;
+    if (d.memory) {
+        block.base = static_cast<uint8_t*>(d.memory);
+        block.size = d.memory_size;
+    } else if (d.allocate) {
+        a.allocate = d.allocate;
+        a.release = d.release;
+        a.user = d.allocator_user;
+    }
+    void* raw = nullptr;
+    if (d.memory) {
+        const stipple::Allocator bump = stipple::block_allocator(&block);
+        raw = stipple::allocate_bytes(bump, sizeof(stipple_player));
+    } else {
+        raw = stipple::allocate_bytes(a, sizeof(stipple_player));
+    }
+    if (!raw) return nullptr;
+    stipple_player* p = new (raw) stipple_player();
+    p->block = block;  // what the player's own bytes left of the block
+    p->allocator = d.memory ? stipple::block_allocator(&p->block) : a;
+    return p;
+}
+
 // The inverse of frame_config_of for a resolved config: every field explicit.
 void desc_of(const stipple::FrameConfig& c, stipple_player_desc* d) {
     d->width = c.width;
@@ -276,11 +306,11 @@ stipple_result stipple_player_create(const stipple_asset* asset, const stipple_p
     stipple::GlApi gl;
     r = from_status(stipple::load_gl_api(desc->get_proc_address, &gl));
     if (r != STIPPLE_OK) return r;
-    stipple_player* p = new (std::nothrow) stipple_player();
-    if (!p) return fail(STIPPLE_ERROR_OUT_OF_MEMORY, "out of memory");
-    r = from_status(stipple::pipeline_init(&p->pipeline, asset->asset, gl, c));
+    stipple_player* p = new_player(*desc);
+    if (!p) return fail(STIPPLE_ERROR_OUT_OF_MEMORY, "no memory for the player");
+    r = from_status(stipple::pipeline_init(&p->pipeline, asset->asset, gl, c, p->allocator));
     if (r != STIPPLE_OK) {
-        delete p;
+        stipple_player_destroy(p);
         return r;
     }
     *out = p;
@@ -403,7 +433,18 @@ uint32_t stipple_player_gl_errors(const stipple_player* p) {
 void stipple_player_destroy(stipple_player* p) {
     if (!p) return;
     stipple::pipeline_destroy(&p->pipeline);
-    delete p;
+    const stipple::Allocator a = p->allocator;
+    p->~stipple_player();
+    if (!a.allocate || a.release) stipple::release_bytes(a, p);  // a block is the caller's
+}
+
+size_t stipple_player_memory_bytes(const stipple_asset* asset, const stipple_player_desc* desc) {
+    if (!asset || !desc) return 0;
+    stipple::FrameConfig c;
+    if (stipple::resolve_frame_config(frame_config_of(*desc), &c).code != stipple::StatusCode::ok)
+        return 0;
+    const size_t pipeline = stipple::pipeline_memory_bytes(asset->asset, c);
+    return pipeline ? stipple::rounded_allocation(sizeof(stipple_player)) + pipeline : 0;
 }
 
 }  // extern "C"

@@ -8,12 +8,6 @@
 namespace stipple {
 namespace {
 
-template <typename T>
-bool alloc(std::unique_ptr<T[]>* out, size_t count) {
-    out->reset(new (std::nothrow) T[count > 0 ? count : 1]);
-    return *out != nullptr;
-}
-
 // Whether the LOD keeps stroke `s`: its root point's relevance radius, at the root's distance,
 // covers at least lod_px pixels (the hierarchy's coarse-to-fine order makes this a prefix of
 // the fur in a uniform view; thesis §9.1.1).
@@ -27,8 +21,7 @@ bool lod_keeps(const format::StrokeRecord& s, const StrokePoint& root, const flo
 
 }  // namespace
 
-Status stroke_stage_init(StrokeStage* s, const Asset& asset, const GlApi& gl,
-                         const FrameConfig& config) {
+Status stroke_stage_init(StrokeStage* s, const Asset& asset, const FrameConfig& config) {
     *s = StrokeStage();
     const StrokesView& v = asset.strokes;
     if (!config.strokes || v.stroke_count == 0) return {};
@@ -46,17 +39,19 @@ Status stroke_stage_init(StrokeStage* s, const Asset& asset, const GlApi& gl,
     s->mesh.index_capacity = indices;
     s->mesh.segments = s->segments.get();
     s->mesh.segment_capacity = segments;
+    stroke_stage_configure(s, config);
+    return {};
+}
+
+Status stroke_stage_init_gl(StrokeStage* s, const GlApi& gl, const FrameConfig& config) {
+    if (!s->vertices) return {};  // no strokes
     StrokeRendererConfig rc;
-    rc.max_vertices = vertices;
-    rc.max_indices = indices;
+    rc.max_vertices = s->mesh.vertex_capacity;
+    rc.max_indices = s->mesh.index_capacity;
     rc.check_errors = config.check_gl_errors;
     Status st = stroke_renderer_init(&s->renderer, gl, rc);
-    if (!st.ok()) {
-        *s = StrokeStage();
-        return st;
-    }
+    if (!st.ok()) return st;
     s->enabled = true;
-    stroke_stage_configure(s, config);
     return {};
 }
 

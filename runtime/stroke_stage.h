@@ -9,6 +9,7 @@
 
 #include "runtime/asset.h"
 #include "runtime/frame_config.h"
+#include "runtime/memory.h"
 #include "runtime/paintstroke.h"
 #include "runtime/stroke_renderer.h"
 
@@ -17,11 +18,11 @@ namespace stipple {
 struct StrokeStage {
     bool enabled = false;  // the asset has strokes and FrameConfig::strokes is on
     TessellationParams params;
-    std::unique_ptr<StrokePoint[]> points;  // eye space, per control point of the asset
-    std::unique_ptr<StrokeVertex[]> vertices;
-    std::unique_ptr<uint32_t[]> indices, sorted_indices;  // 3 per triangle
-    std::unique_ptr<StrokeSegment[]> segments;
-    std::unique_ptr<uint32_t[]> order, sort_scratch;  // segments, 2 * segments
+    Buffer<StrokePoint> points;  // eye space, per control point of the asset
+    Buffer<StrokeVertex> vertices;
+    Buffer<uint32_t> indices, sorted_indices;  // 3 per triangle
+    Buffer<StrokeSegment> segments;
+    Buffer<uint32_t> order, sort_scratch;  // segments, 2 * segments
     StrokeMesh mesh;
     TessellationStats stats;  // of the last frame
     uint32_t strokes_drawn = 0;
@@ -40,10 +41,13 @@ struct StrokeFrameInput {
     glm::vec3 light_eye{0.0f, 0.0f, 1.0f};     // unit, toward the light
 };
 
-// Takes the stage's buffers (none when the asset has no strokes or config.strokes is off) and
-// creates its renderer. Fails with out_of_memory or gl_error.
-[[nodiscard]] Status stroke_stage_init(StrokeStage* s, const Asset& asset, const GlApi& gl,
+// Takes the stage's buffers (none when the asset has no strokes or config.strokes is off),
+// from the current allocator (runtime/memory.h). Fails with out_of_memory.
+[[nodiscard]] Status stroke_stage_init(StrokeStage* s, const Asset& asset,
                                        const FrameConfig& config);
+// Then creates its renderer (when it has buffers) and turns the stage on. Fails with gl_error.
+[[nodiscard]] Status stroke_stage_init_gl(StrokeStage* s, const GlApi& gl,
+                                          const FrameConfig& config);
 
 // Re-reads the settings pipeline_set_view may change (quality, tolerances, LOD).
 void stroke_stage_configure(StrokeStage* s, const FrameConfig& config);
