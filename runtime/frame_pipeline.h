@@ -9,9 +9,9 @@
 #include <glm/glm.hpp>
 #include <memory>
 
-#include "runtime/memory.h"
 #include "runtime/asset.h"
 #include "runtime/frame_config.h"
+#include "runtime/memory.h"
 #include "runtime/point_refinement.h"
 #include "runtime/point_triangulation.h"
 #include "runtime/renderer.h"
@@ -71,14 +71,14 @@ struct Pipeline {
     MeshView refinement_domain;
     bool refine_on_points = false;
     Buffer<uint32_t> refined_triangle, refined_index;  // budget
-    uint32_t refined_count = 0;                                   // extra points in the last frame
+    uint32_t refined_count = 0;                        // extra points in the last frame
     RefinementStats refinement_stats;
     Buffer<uint8_t> point_double_sided;  // point_count, or null: runtime/double_sided.h
     Buffer<uint8_t> triangle_front;      // triangle_count
     Buffer<float> lines;                 // 6 * edge_count
-    uint32_t points_drawn = 0;                      // size > 0 in the last frame
-    uint32_t lines_drawn = 0;                       // silhouette lines
-    StrokeStage strokes;                            // paintstrokes (empty without STRK)
+    uint32_t points_drawn = 0;           // size > 0 in the last frame
+    uint32_t lines_drawn = 0;            // silhouette lines
+    StrokeStage strokes;                 // paintstrokes (empty without STRK)
 };
 
 // Resolves `config` (resolve_frame_config: defaults, limits), takes every buffer a frame needs

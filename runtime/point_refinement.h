@@ -34,8 +34,8 @@
 #include <glm/glm.hpp>
 #include <memory>
 
-#include "runtime/memory.h"
 #include "runtime/asset.h"
+#include "runtime/memory.h"
 #include "runtime/refinement_sequence.h"
 #include "runtime/stipple_size.h"
 
@@ -59,8 +59,8 @@ struct RefinementMesh {
     Buffer<float> phase;              // rank offset of the first extra point, (0, 1]
     Buffer<float> fade;               // per frame: size factor of the baked points here
     Buffer<RefinementVertex> vertex;  // per vertex, rewritten every frame
-    float finest_density = 0.0f;  // rho0: baked points per unit bind area, finest level
-    bool hand_over = true;        // baked points fade in close-ups (mesh domain)
+    float finest_density = 0.0f;      // rho0: baked points per unit bind area, finest level
+    bool hand_over = true;            // baked points fade in close-ups (mesh domain)
 };
 
 // Extra points of one frame, structure of arrays. Positions/normals/radius go straight into the

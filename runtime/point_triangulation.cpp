@@ -1,10 +1,10 @@
-#include "runtime/memory.h"
 #include "runtime/point_triangulation.h"
 
 #include <algorithm>
 #include <cmath>
 #include <new>
 
+#include "runtime/memory.h"
 #include "runtime/spatial_grid.h"
 
 namespace stipple {

@@ -22,8 +22,8 @@
 #include <cstdint>
 #include <memory>
 
-#include "runtime/memory.h"
 #include "runtime/asset.h"
+#include "runtime/memory.h"
 
 namespace stipple {
 

@@ -1,4 +1,3 @@
-#include "runtime/memory.h"
 #include "runtime/refinement_order.h"
 
 #include <algorithm>
@@ -7,6 +6,7 @@
 #include <memory>
 #include <new>
 
+#include "runtime/memory.h"
 #include "runtime/spatial_grid.h"
 
 namespace stipple {

@@ -1,14 +1,13 @@
-#include "runtime/memory.h"
 #include "runtime/spatial_grid.h"
 
 #include <algorithm>
 #include <new>
 
+#include "runtime/memory.h"
+
 namespace stipple {
 
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 bool SpatialGrid::build(const float* p, uint32_t n, float cell_size, const float* use) {
     points = p;

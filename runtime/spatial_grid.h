@@ -13,10 +13,10 @@ namespace stipple {
 
 struct SpatialGrid {
     float cell = 1.0f;
-    uint32_t mask = 0;                  // bucket count - 1
-    Buffer<uint32_t> start;  // bucket -> first slot, bucket count + 1
-    Buffer<uint32_t> items;  // point indices sorted by bucket
-    const float* points = nullptr;      // 3 floats per point
+    uint32_t mask = 0;              // bucket count - 1
+    Buffer<uint32_t> start;         // bucket -> first slot, bucket count + 1
+    Buffer<uint32_t> items;         // point indices sorted by bucket
+    const float* points = nullptr;  // 3 floats per point
 
     // Cell coordinates saturate at +-2^30 (NaN: 0): a far point or a tiny cell must not
     // overflow the float-to-int conversion (undefined) nor near()'s loop counters.
