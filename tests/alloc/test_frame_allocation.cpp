@@ -102,7 +102,8 @@ TEST(FrameAllocation, FramesWithStrokesAllocateNothing) {
 }
 
 // Three instances of one asset drawn into the application's framebuffer for 1,000 frames,
-// with per-frame setting changes (lights, ink, silhouettes) between them: no allocation.
+// with per-frame setting changes (lights, ink, silhouettes) between them: no allocation,
+// counted by the global operator new and by the instances' allocator hook.
 TEST(FrameAllocation, ThreeInstancesInTheApplicationsFrameAllocateNothing) {
     stipple::Asset asset;
     std::string error;
@@ -127,11 +128,20 @@ TEST(FrameAllocation, ThreeInstancesInTheApplicationsFrameAllocateNothing) {
     stipple::FrameConfig config;
     config.width = kW;
     config.height = kH;
+    // Their memory through an allocator hook that counts its calls.
+    static std::atomic<long> hook_calls{0};
+    stipple::Allocator hook;
+    hook.allocate = [](size_t bytes, void*) -> void* {
+        ++hook_calls;
+        return std::malloc(bytes);
+    };
+    hook.release = [](void* p, void*) { std::free(p); };
     std::unique_ptr<stipple::Pipeline> instances[3];
     for (auto& p : instances) {
         p = std::make_unique<stipple::Pipeline>();
-        ASSERT_TRUE(stipple::pipeline_init(p.get(), asset, g, config).ok());
+        ASSERT_TRUE(stipple::pipeline_init(p.get(), asset, g, config, hook).ok());
     }
+    EXPECT_GT(hook_calls.load(), 30);  // the buffers came through the hook
     const stipple::OrbitCamera cam = stipple::orbit_camera(asset, instances[0]->config, nullptr);
     stipple::AppView view;
     view.view = cam.view;
@@ -142,6 +152,7 @@ TEST(FrameAllocation, ThreeInstancesInTheApplicationsFrameAllocateNothing) {
     // (llvmpipe allocates for that, through this counter too): once, before counting.
     for (auto& p : instances) stipple::pipeline_draw_into(p.get(), {}, view, nullptr);
     g_allocations = 0;
+    hook_calls = 0;
     g_counting = true;
     uint32_t drawn = 0;
     for (int f = 0; f < 1000; ++f) {
@@ -165,6 +176,7 @@ TEST(FrameAllocation, ThreeInstancesInTheApplicationsFrameAllocateNothing) {
     g.Finish();
     g_counting = false;
     EXPECT_EQ(g_allocations.load(), 0);
+    EXPECT_EQ(hook_calls.load(), 0);
     EXPECT_GT(drawn, 3000u * 20u);  // real frames
     for (auto& p : instances) stipple::pipeline_destroy(p.get());
     g.BindFramebuffer(GL_FRAMEBUFFER, 0);
