@@ -1,16 +1,19 @@
 /* three_walkers: a tiny application that owns its GL context, framebuffer, camera and scene,
  * and draws three stippled CesiumMan instances into its own frame through the stipple C API
- * (runtime/stipple.h, docs/integration.md). Headless (EGL surfaceless, Mesa llvmpipe works),
- * so it runs in CI; it writes the frame as a PPM.
- *   three_walkers OUT.ppm [TIME_SECONDS] */
+ * (runtime/stipple.h, docs/integration.md). It renders into its own framebuffer and writes
+ * the frame as a PPM; with --window it also shows the frames in an X11 window (EGL; runs under
+ * xvfb-run), else it needs no display at all (EGL surfaceless: CI).
+ *   three_walkers OUT.ppm [TIME_SECONDS] [--window FRAMES] */
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <GLES3/gl3.h>
 #include <runtime/stipple.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "scene.h"
+#include "window.h"
 
 enum { kWidth = 640, kHeight = 480, kWalkers = 3 };
 
@@ -45,6 +48,27 @@ static GLuint make_framebuffer(void) {
     return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE ? fbo : 0;
 }
 
+/* The application's frame: its own clear and scene with depth, then the three walkers. */
+static void draw_frame(GLuint fbo, const scene* scene, stipple_app_view* view,
+                       const float view_projection[16], stipple_player* const* walkers,
+                       float time) {
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, kWidth, kHeight);
+    glDepthMask(GL_TRUE);
+    glClearColor(0.93f, 0.91f, 0.86f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    scene_draw(scene, view_projection);
+    for (int i = 0; i < kWalkers; ++i) {
+        mat4_translate(view->model, -1.2f + 1.2f * (float)i, 0.0f, 0.0f);
+        /* Different phases of the walk; the third crossfades toward another phase. */
+        const float t = time + 0.66f * (float)i;
+        if (i < 2)
+            stipple_player_draw_into(walkers[i], view, 0, t, -1, 0.0f, 0.0f);
+        else
+            stipple_player_draw_into(walkers[i], view, 0, t, 0, t + 1.0f, 0.5f);
+    }
+}
+
 static int fail(const char* what) {
     fprintf(stderr, "three_walkers: %s: %s\n", what, stipple_last_error());
     return 1;
@@ -56,8 +80,16 @@ int main(int argc, char** argv) {
         return 2;
     }
     const float time = argc > 2 ? (float)atof(argv[2]) : 0.5f;
+    const int window_frames = argc > 4 && strcmp(argv[3], "--window") == 0 ? atoi(argv[4]) : 0;
     EGLDisplay display;
-    if (open_context(&display) != 0) return fprintf(stderr, "three_walkers: no EGL context\n"), 1;
+    window win = {0};
+    if (window_frames > 0) {
+        if (window_open(&win, kWidth, kHeight, "three walkers") != 0)
+            return fprintf(stderr, "three_walkers: no window (DISPLAY? xvfb-run)\n"), 1;
+        display = win.display;
+    } else if (open_context(&display) != 0) {
+        return fprintf(stderr, "three_walkers: no EGL context\n"), 1;
+    }
     GLuint fbo = make_framebuffer();
     scene scene;
     if (!fbo || scene_init(&scene) != 0) return fprintf(stderr, "three_walkers: GL setup\n"), 1;
@@ -82,23 +114,12 @@ int main(int argc, char** argv) {
     float view_projection[16];
     mat4_multiply(view_projection, view.projection, view.view);
 
-    /* The application's frame: its own clear and scene with depth, then the walkers. */
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glViewport(0, 0, kWidth, kHeight);
-    glDepthMask(GL_TRUE);
-    glClearColor(0.93f, 0.91f, 0.86f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    scene_draw(&scene, view_projection);
-    for (int i = 0; i < kWalkers; ++i) {
-        mat4_translate(view.model, -1.2f + 1.2f * (float)i, 0.0f, 0.0f);
-        /* Different phases of the walk; the third crossfades toward another phase. */
-        const float t = time + 0.66f * (float)i;
-        if (i < 2)
-            stipple_player_draw_into(walkers[i], &view, 0, t, -1, 0.0f, 0.0f);
-        else
-            stipple_player_draw_into(walkers[i], &view, 0, t, 0, t + 1.0f, 0.5f);
+    const int frames = window_frames > 0 ? window_frames : 1;
+    for (int f = 0; f < frames; ++f) {
+        draw_frame(fbo, &scene, &view, view_projection, walkers, time + (float)f / 30.0f);
+        if (window_frames > 0) window_present(&win, fbo, kWidth, kHeight);
     }
-
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     unsigned char* rgba = malloc((size_t)kWidth * kHeight * 4);
     glReadPixels(0, 0, kWidth, kHeight, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
     const int written = write_ppm(argv[1], kWidth, kHeight, rgba);
@@ -106,7 +127,10 @@ int main(int argc, char** argv) {
     for (int i = 0; i < kWalkers; ++i) stipple_player_destroy(walkers[i]);
     stipple_asset_destroy(asset);
     scene_destroy(&scene);
-    eglTerminate(display);
+    if (window_frames > 0)
+        window_close(&win);
+    else
+        eglTerminate(display);
     if (written != 0) return fprintf(stderr, "three_walkers: cannot write %s\n", argv[1]), 1;
     printf("three_walkers: wrote %s\n", argv[1]);
     return 0;

@@ -23,9 +23,9 @@ bool paper(const uint8_t* p) {
     return p[0] > 245 && p[1] > 245 && p[2] > 245;
 }
 
-TEST(ThreeWalkers, GroundBoxAndThreeOccludedWalkers) {
+void check_frame(const std::string& path) {
     Image img;
-    ASSERT_TRUE(load_png(STIPPLE_EXAMPLE_FRAME, &img)) << STIPPLE_EXAMPLE_FRAME;  // stb reads PPM
+    ASSERT_TRUE(load_png(path, &img)) << path;  // stb reads PPM
     ASSERT_EQ(img.width, 640);
     ASSERT_EQ(img.height, 480);
     // The box (0.2, 0.35, 0.8): its bounding rectangle, and inside it nothing but box.
@@ -60,6 +60,17 @@ TEST(ThreeWalkers, GroundBoxAndThreeOccludedWalkers) {
         EXPECT_GT(paper_in[k], 600u) << "walker " << k;
     }
     EXPECT_GT(paper_over_ground, 500u) << "the walkers' legs should stand in front of the ground";
+}
+
+TEST(ThreeWalkers, GroundBoxAndThreeOccludedWalkers) {
+    check_frame(STIPPLE_EXAMPLE_FRAME);
+}
+
+// The same application showing its frames in an X11 window (under Xvfb): the frame it drew
+// last (10 frames into the walk) holds the same.
+TEST(ThreeWalkers, InAWindowToo) {
+    if (run("command -v xvfb-run > /dev/null") != 0) GTEST_SKIP() << "no xvfb-run";
+    check_frame(STIPPLE_EXAMPLE_WINDOW_FRAME);
 }
 
 }  // namespace
