@@ -6,6 +6,7 @@
 #                  at run time keeps the tone (docs/tone.md)
 #   fur_anim.png   CesiumMan with 3,000 paintstroke hairs walking (320x240, 30 frames; GI'98)
 #   torus.png      the sketch's torus of 1,250 strokes (320x240)
+#   three_walkers.png  examples/three_walkers' frame (built against an install of build/)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=build/bin
@@ -33,4 +34,20 @@ cp "$TMP/fur/anim.png" "$OUT/fur_anim.png"
 "$BIN/stipple-play" "$TMP/torus.stip" --out "$TMP/torus" --frames 1 --size 320x240 --pitch 35 \
     --no-apng
 cp "$TMP/torus/frame_0000.png" "$OUT/torus.png"
+cmake --install build --prefix "$TMP/prefix" > /dev/null
+cmake -S examples/three_walkers -B "$TMP/example" -DCMAKE_PREFIX_PATH="$TMP/prefix" \
+    -DCMAKE_BUILD_TYPE=Release > /dev/null
+cmake --build "$TMP/example" > /dev/null
+"$TMP/example/three_walkers" "$TMP/three_walkers.ppm" 0.5
+python3 - "$TMP/three_walkers.ppm" "$OUT/three_walkers.png" <<'PY'
+import struct, sys, zlib  # PPM (P6) to PNG, no dependencies
+data = open(sys.argv[1], 'rb').read()
+magic, size, depth, pixels = data.split(b'\n', 3)
+w, h = map(int, size.split())
+raw = b''.join(b'\0' + pixels[y * w * 3:(y + 1) * w * 3] for y in range(h))
+def chunk(kind, body):
+    return struct.pack('>I', len(body)) + kind + body + struct.pack('>I', zlib.crc32(kind + body))
+open(sys.argv[2], 'wb').write(b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', w, h, 8, 2, 0, 0, 0))
+                              + chunk(b'IDAT', zlib.compress(raw, 9)) + chunk(b'IEND', b''))
+PY
 ls -l "$OUT"
