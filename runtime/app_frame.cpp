@@ -89,7 +89,9 @@ void pipeline_draw_into(Pipeline* p, const AnimationState& state, const AppView&
     const auto start = std::chrono::steady_clock::now();
     const glm::mat4& vp = p->view_projection;
     renderer_draw_mesh(r, vp, p->vertex_positions.get(), p->asset->mesh.vertex_count);
-    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(saved.draw_framebuffer));
+    const GLuint target =
+        view.framebuffer >= 0 ? GLuint(view.framebuffer) : GLuint(saved.draw_framebuffer);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target);
     gl.Viewport(view.viewport[0], view.viewport[1], view.viewport[2], view.viewport[3]);
     draw_body(r, vp);
     if (p->strokes.enabled) stroke_stage_draw(&p->strokes, pipeline_stroke_input(*p));

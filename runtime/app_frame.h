@@ -4,6 +4,7 @@
 // application already drew there, so the character stands on its floor and behind its
 // pillars. The headless player (pipeline_frame) keeps drawing into the pipeline's own image.
 #pragma once
+#include <cstdint>
 #include <glm/glm.hpp>
 
 #include "runtime/frame_pipeline.h"
@@ -15,6 +16,9 @@ struct AppView {
     glm::mat4 projection = glm::mat4(1.0f);  // eye to clip space (perspective, GL conventions)
     glm::mat4 model = glm::mat4(1.0f);       // the asset's space to world space
     int viewport[4] = {0, 0, 0, 0};          // x, y, width, height in pixels
+    // The framebuffer to draw into: -1, the one bound for drawing at the call; else a GL
+    // framebuffer name (0: the default framebuffer). The binding is restored afterwards.
+    int64_t framebuffer = -1;
 };
 
 // Poses `state`, runs every stage for the application's camera and draws into the framebuffer

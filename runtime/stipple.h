@@ -194,6 +194,8 @@ typedef struct stipple_app_view {
     float projection[16]; /* eye to clip space (perspective, GL conventions) */
     float model[16];      /* the asset's space to world space */
     int viewport[4];      /* x, y, width, height in pixels (width and height in [1, 16384]) */
+    int framebuffer_set;  /* 0: draw into the framebuffer bound for drawing at the call; */
+    unsigned framebuffer; /* 1: into this GL framebuffer (0: the default one); restored after */
 } stipple_app_view;
 
 /* Poses `clip` at `time_seconds` (layered with clip2 at time2 by weight2 as in

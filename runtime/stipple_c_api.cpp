@@ -349,6 +349,7 @@ void stipple_player_draw_into(stipple_player* p, const stipple_app_view* view, i
     v.projection = glm::make_mat4(view->projection);
     v.model = glm::make_mat4(view->model);
     for (int k = 0; k < 4; ++k) v.viewport[k] = view->viewport[k];
+    if (view->framebuffer_set) v.framebuffer = int64_t(view->framebuffer);
     stipple::pipeline_draw_into(&p->pipeline, animation_state(clip, time, clip2, time2, weight2), v,
                                 nullptr);
     warn_after_draw(p);

@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
     for (int i = 0; i < kWalkers; ++i)
         if (stipple_player_create(asset, &desc, &walkers[i]) != STIPPLE_OK) return fail("create");
 
-    stipple_app_view view;
+    stipple_app_view view = {0};
     const float eye[3] = {0.0f, 1.4f, 5.0f}, target[3] = {0.0f, 0.75f, 0.0f};
     mat4_look_at(view.view, eye, target);
     mat4_perspective(view.projection, 0.75f, (float)kWidth / kHeight, 0.1f, 50.0f);

@@ -236,4 +236,45 @@ TEST_F(AppFrame, ModelMatrixPlacesTheCharacter) {
     EXPECT_GT(moved, centred + 10.0);
 }
 
+// A framebuffer named in the view is drawn into even when another one is bound, and the
+// bound one stays bound.
+TEST_F(AppFrame, DrawsIntoANamedFramebuffer) {
+    const GlApi& gl = gl_.gl();
+    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    gl.DepthMask(GL_TRUE);
+    gl.ClearColor(1, 1, 1, 1);
+    gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    GLuint other = 0, other_rb = 0;  // bound at the call; must stay untouched
+    gl.GenFramebuffers(1, &other);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, other);
+    gl.GenRenderbuffers(1, &other_rb);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, other_rb);
+    gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, kW, kH);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, other_rb);
+    gl.ClearColor(0, 1, 0, 1);
+    gl.Clear(GL_COLOR_BUFFER_BIT);
+    AppView v = view_;
+    v.framebuffer = fbo_;
+    AnimationState state;
+    state.clip = 0;
+    state.time = 0.5f;
+    pipeline_draw_into(pipeline_.get(), state, v, nullptr);
+    GLint bound = 0;
+    gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
+    EXPECT_EQ(GLuint(bound), other);
+    std::vector<uint8_t> mine(size_t(kW) * kH * 4), theirs(mine.size());
+    gl.ReadPixels(0, 0, kW, kH, GL_RGBA, GL_UNSIGNED_BYTE, theirs.data());
+    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    gl.ReadPixels(0, 0, kW, kH, GL_RGBA, GL_UNSIGNED_BYTE, mine.data());
+    size_t ink = 0, green = 0;
+    for (size_t i = 0; i < mine.size(); i += 4) {
+        ink += inky(&mine[i]);
+        green += theirs[i] == 0 && theirs[i + 1] == 255 && theirs[i + 2] == 0;
+    }
+    EXPECT_GT(ink, 200u);
+    EXPECT_EQ(green, size_t(kW) * kH) << "the bound framebuffer was drawn into";
+    gl.DeleteFramebuffers(1, &other);
+    gl.DeleteRenderbuffers(1, &other_rb);
+}
+
 }  // namespace
