@@ -18,6 +18,7 @@
 #include "tools/image_write.h"
 #include "tools/json_line.h"
 #include "tools/play_outputs.h"
+#include "tools/play_usage.h"
 #include "tools/play_window.h"
 
 namespace {
@@ -26,115 +27,6 @@ namespace {
 // (runtime/frame_config.h) and the resolved zero config, never from literals here.
 const stipple::FrameSettings& kLimits = stipple::kFrameSettings;
 const stipple::FrameConfig kDefaults = stipple::default_frame_config();
-
-std::string g(double v) {
-    char text[32];
-    std::snprintf(text, sizeof(text), "%g", v);
-    return text;
-}
-
-std::string range(const stipple::Setting<float>& s) {
-    return "in [" + g(s.min) + ", " + g(s.max) + "]";
-}
-
-unsigned rgb_of(const float* c) {
-    unsigned rgb = 0;
-    for (int k = 0; k < 3; ++k) rgb |= unsigned(std::lround(c[k] * 255.0f)) << (16 - 8 * k);
-    return rgb;
-}
-
-std::string background_default() {
-    char text[8];
-    std::snprintf(text, sizeof(text), "%06x", rgb_of(kDefaults.background));
-    return text;
-}
-
-const std::string kUsage =
-    "usage: stipple-play ASSET.stip --out DIR [options]\n"
-    "       stipple-play ASSET.stip --window [options]   (a kiosk window; keys below)\n"
-    "  --out DIR               where frame_NNNN.png and anim.png go (created if missing)\n"
-    "  --clip NAME|INDEX       animation clip (default 0; the rest pose if the asset has none)\n"
-    "  --blend CLIP2:W         layer a second clip with weight W in [0,1] (same clock)\n"
-    "  --crossfade CLIP2:S     fade from --clip to CLIP2 over S in [0.001, 10000] seconds,\n"
-    "                          starting at --time (default: no second clip)\n"
-    "  --skinning lbs|dqs      linear blend (default) or dual-quaternion skinning\n"
-    "  --frames N              frames to render (default 30, in [1, 100000])\n"
-    "  --fps F                 frames per second of animation time (default 30, in [0.001, 1000])\n"
-    "  --time T0               start time in seconds (default 0, |T0| <= 1e6); clips loop\n"
-    "  --size WxH              image size (default " +
-    std::to_string(kDefaults.width) + "x" + std::to_string(kDefaults.height) + ", " +
-    std::to_string(kLimits.width.min) + " <= W, H <= " + std::to_string(kLimits.width.max) +
-    ")\n"
-    "  --zoom Z                1 = every pose of the played clip(s) fits the view (no clip:\n"
-    "                          the rest pose), 2 = twice as large (default " +
-    g(kDefaults.zoom) + ", " + range(kLimits.zoom) +
-    ")\n"
-    "  --zoom-to Z2            zoom from Z to Z2 (geometrically) over the frames (default: no\n"
-    "                          zoom change; " +
-    range(kLimits.zoom) +
-    ")\n"
-    "  --zoom-period N         with --zoom-to: go Z -> Z2 -> Z every N frames, again and again\n"
-    "                          (default: once, Z -> Z2 over all frames)\n"
-    "  --yaw DEG, --pitch DEG  camera orbit (default " +
-    g(kDefaults.yaw_degrees) + ", " + g(kDefaults.pitch_degrees) +
-    ": looking down -Z);\n                          yaw " + range(kLimits.yaw_degrees) +
-    ", pitch " + range(kLimits.pitch_degrees) +
-    "\n"
-    "  --tone T                constant target tone " +
-    range(kLimits.constant_tone) +
-    " instead of lighting (default:\n"
-    "                          lighting)\n"
-    "  --point-size PX         maximum stipple diameter (default " +
-    g(kDefaults.max_point_size) + ", " + range(kLimits.max_point_size) +
-    ")\n"
-    "  --background RRGGBB     background colour (default " +
-    background_default() +
-    ")\n"
-    "  --no-relevance-update   keep rest-pose relevance radii (thesis Alg. 6.3 without 6.4)\n"
-    "  --dark-tone T           darkest tone lighting asks for, thesis §8.4 (default " +
-    g(kDefaults.dark_tone) + ", " + range(kLimits.dark_tone) +
-    ")\n"
-    "  --refinement-budget N   extra points per frame where the baked hierarchy runs out\n"
-    "                          (close-ups, stretch; default " +
-    std::to_string(kDefaults.refinement_budget) + ", 0 = off, max " +
-    std::to_string(kLimits.refinement_budget.max) +
-    ")\n"
-    "  --no-silhouettes        do not draw silhouette lines\n"
-    "  --line-width PX         silhouette line width (default " +
-    g(kDefaults.line_width) + ", " + range(kLimits.line_width) +
-    ")\n"
-    "  --no-strokes            do not draw the asset's paintstrokes (STRK section)\n"
-    "  --stroke-quality Q      paintstroke breadthwise quality 0, 1, 2 or auto (GI'98 §4.3;\n"
-    "                          default auto: by projected radius)\n"
-    "  --stroke-tolerance T[,Z]  lengthwise tolerances in pixels: tol_theta (Position\n"
-    "                          Constraint I) and tol_z (II and radius; default " +
-    g(kDefaults.stroke_tol_theta) + "," + g(kDefaults.stroke_tol_z) + ", each " +
-    range(kLimits.stroke_tol_theta) +
-    ")\n"
-    "  --stroke-lod PX         draw a stroke only where its root point's relevance radius\n"
-    "                          projects to >= PX pixels (default 0: all; " +
-    range(kLimits.stroke_lod_px) +
-    ")\n"
-    "  --stroke-budget N       tessellated stroke vertices per frame (default " +
-    std::to_string(kDefaults.stroke_vertex_budget) + ", " +
-    std::to_string(kLimits.stroke_vertex_budget.min) + ".." +
-    std::to_string(kLimits.stroke_vertex_budget.max) +
-    "; 48 bytes each);\n"
-    "                          strokes past it are left out (--stats: stroke_budget_full)\n"
-    "  --roots-out             also write roots_NNNN.csv (stroke,x,y,surface_x,surface_y:\n"
-    "                          each stroke's drawn root and its host surface point, pixels)\n"
-    "  --dots-out              also write dots_NNNN.csv (id,x,y,size per drawn dot)\n"
-    "  --mask-out              also write mask_NNNN.png: white where the mesh covers the\n"
-    "                          pixel, black elsewhere (the object mask of stipple-measure)\n"
-    "  --no-png                do not write per-frame PNGs\n"
-    "  --no-apng               do not write anim.png\n"
-    "  --stats                 print a JSON object of counts and timings to stdout\n"
-    "  --check-gl              check glGetError after every pass and readback; a GL error\n"
-    "                          fails the run (exit 1) naming the pass; --stats counts them\n"
-    "  --rss-every N           every N frames append frame,rss_kb,ms_per_frame (resident\n"
-    "                          memory, mean frame time since the last row) to DIR/rss.csv\n"
-    "  --backend egl|osmesa    force a context backend (default: EGL, then OSMesa)\n" +
-    std::string(stipple::play::kWindowUsage) + "  -h, --help              this text\n";
 
 struct Options {
     std::string asset, out, clip, backend, second_clip;
@@ -164,11 +56,16 @@ struct Options {
     double stroke_tol_theta = kDefaults.stroke_tol_theta, stroke_tol_z = kDefaults.stroke_tol_z;
     double stroke_lod = kDefaults.stroke_lod_px;
     long stroke_budget = long(kDefaults.stroke_vertex_budget);
+    int light_count = -1;  // -1: the default list
+    stipple::Light lights[stipple::kMaxLights];
+    bool world_lights = false;
+    double ambient = kDefaults.ambient;
     long rss_every = 0;                // > 0: DIR/rss.csv gets a row every rss_every frames
     stipple::play::WindowOptions win;  // --window (tools/play_window.h)
     bool frames_given = false;         // a window runs until Esc without --frames
 };
 
+const std::string kUsage = stipple::play::usage();
 stipple::cli::Parser g_parser("stipple-play", kUsage.c_str());
 
 [[noreturn]] void die(const std::string& message) {
@@ -199,6 +96,35 @@ void parse_tolerance(const std::string& option, const std::string& v, Options* o
             ? std::max(0.5 * o->stroke_tol_theta, double(t.min))
             : g_parser.number_value(option + " tol_z", v.substr(comma + 1),
                                     kLimits.stroke_tol_z.min, kLimits.stroke_tol_z.max);
+}
+
+// --light X,Y,Z[,I], up to kMaxLights times.
+void parse_light(const std::string& option, const std::string& v, Options* o) {
+    if (o->light_count < 0) o->light_count = 0;
+    if (o->light_count == stipple::kMaxLights)
+        die(option + ": at most " + std::to_string(stipple::kMaxLights) + " lights");
+    std::string parts[4];
+    int n = 0;
+    for (size_t at = 0;; ++n) {
+        const size_t comma = v.find(',', at);
+        if (n == 4) die(option + " takes X,Y,Z[,INTENSITY], got '" + v + "'");
+        parts[n] = v.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
+        if (comma == std::string::npos) break;
+        at = comma + 1;
+    }
+    if (++n < 3) die(option + " takes X,Y,Z[,INTENSITY], got '" + v + "'");
+    double x[4] = {0, 0, 0, 1};
+    for (int k = 0; k < n; ++k)
+        x[k] = k == 3
+                   ? g_parser.number_value(option + " intensity", parts[k],
+                                           kLimits.light_intensity.min, kLimits.light_intensity.max)
+                   : g_parser.number_value(option + " direction", parts[k], -1e6, 1e6);
+    if (x[0] == 0 && x[1] == 0 && x[2] == 0) die(option + ": the direction must not be zero");
+    stipple::Light& l = o->lights[o->light_count++];
+    l.direction[0] = float(x[0]);
+    l.direction[1] = float(x[1]);
+    l.direction[2] = float(x[2]);
+    l.intensity = float(x[3]);
 }
 
 // What is played and how the camera sees it.
@@ -253,6 +179,11 @@ void add_render_options(stipple::cli::Parser& p, Options& o) {
                  kLimits.refinement_budget.max, &o.refinement_budget)
         .flag("--no-silhouettes", &o.silhouettes, false)
         .number("--line-width", kLimits.line_width.min, kLimits.line_width.max, &o.line_width)
+        .custom("--light",
+                [&o](const std::string& n, const std::string& v) { parse_light(n, v, &o); })
+        .choice("--light-space", {std::pair<const char*, bool>{"camera", false}, {"world", true}},
+                &o.world_lights)
+        .number("--ambient", kLimits.ambient.min, kLimits.ambient.max, &o.ambient)
         .flag("--no-strokes", &o.strokes, false)
         .choice("--stroke-quality",
                 {std::pair<const char*, int>{"auto", -1}, {"0", 0}, {"1", 1}, {"2", 2}},
@@ -348,6 +279,14 @@ stipple::FrameConfig pipeline_config(const Options& o, const Clips& clips) {
     pc.stroke_tol_z = float(o.stroke_tol_z);
     pc.stroke_lod_px = float(o.stroke_lod);
     pc.stroke_vertex_budget = uint32_t(o.stroke_budget);
+    pc.ambient = float(o.ambient);
+    if (o.light_count >= 0) {
+        pc.light_count = o.light_count;
+        for (int i = 0; i < o.light_count; ++i) {
+            pc.lights[i] = o.lights[i];
+            pc.lights[i].camera_space = !o.world_lights;
+        }
+    }
     std::memcpy(pc.background, o.background, sizeof(pc.background));
     return pc;
 }

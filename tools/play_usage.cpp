@@ -1,0 +1,145 @@
+#include "tools/play_usage.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "runtime/frame_config.h"
+#include "tools/play_window.h"
+
+namespace stipple::play {
+namespace {
+
+const FrameSettings& kLimits = kFrameSettings;
+const FrameConfig kDefaults = default_frame_config();
+
+std::string g(double v) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%g", v);
+    return text;
+}
+
+std::string range(const stipple::Setting<float>& s) {
+    return "in [" + g(s.min) + ", " + g(s.max) + "]";
+}
+
+unsigned rgb_of(const float* c) {
+    unsigned rgb = 0;
+    for (int k = 0; k < 3; ++k) rgb |= unsigned(std::lround(c[k] * 255.0f)) << (16 - 8 * k);
+    return rgb;
+}
+
+std::string background_default() {
+    char text[8];
+    std::snprintf(text, sizeof(text), "%06x", rgb_of(kDefaults.background));
+    return text;
+}
+
+}  // namespace
+
+std::string usage() {
+    return "usage: stipple-play ASSET.stip --out DIR [options]\n"
+           "       stipple-play ASSET.stip --window [options]   (a kiosk window; keys below)\n"
+           "  --out DIR               where frame_NNNN.png and anim.png go (created if missing)\n"
+           "  --clip NAME|INDEX       animation clip (default 0; the rest pose if the asset has "
+           "none)\n"
+           "  --blend CLIP2:W         layer a second clip with weight W in [0,1] (same clock)\n"
+           "  --crossfade CLIP2:S     fade from --clip to CLIP2 over S in [0.001, 10000] seconds,\n"
+           "                          starting at --time (default: no second clip)\n"
+           "  --skinning lbs|dqs      linear blend (default) or dual-quaternion skinning\n"
+           "  --frames N              frames to render (default 30, in [1, 100000])\n"
+           "  --fps F                 frames per second of animation time (default 30, in [0.001, "
+           "1000])\n"
+           "  --time T0               start time in seconds (default 0, |T0| <= 1e6); clips loop\n"
+           "  --size WxH              image size (default " +
+           std::to_string(kDefaults.width) + "x" + std::to_string(kDefaults.height) + ", " +
+           std::to_string(kLimits.width.min) + " <= W, H <= " + std::to_string(kLimits.width.max) +
+           ")\n"
+           "  --zoom Z                1 = every pose of the played clip(s) fits the view (no "
+           "clip:\n"
+           "                          the rest pose), 2 = twice as large (default " +
+           g(kDefaults.zoom) + ", " + range(kLimits.zoom) +
+           ")\n"
+           "  --zoom-to Z2            zoom from Z to Z2 (geometrically) over the frames (default: "
+           "no\n"
+           "                          zoom change; " +
+           range(kLimits.zoom) +
+           ")\n"
+           "  --zoom-period N         with --zoom-to: go Z -> Z2 -> Z every N frames, again and "
+           "again\n"
+           "                          (default: once, Z -> Z2 over all frames)\n"
+           "  --yaw DEG, --pitch DEG  camera orbit (default " +
+           g(kDefaults.yaw_degrees) + ", " + g(kDefaults.pitch_degrees) +
+           ": looking down -Z);\n                          yaw " + range(kLimits.yaw_degrees) +
+           ", pitch " + range(kLimits.pitch_degrees) +
+           "\n"
+           "  --tone T                constant target tone " +
+           range(kLimits.constant_tone) +
+           " instead of lighting (default:\n"
+           "                          lighting)\n"
+           "  --point-size PX         maximum stipple diameter (default " +
+           g(kDefaults.max_point_size) + ", " + range(kLimits.max_point_size) +
+           ")\n"
+           "  --background RRGGBB     background colour (default " +
+           background_default() +
+           ")\n"
+           "  --no-relevance-update   keep rest-pose relevance radii (thesis Alg. 6.3 without "
+           "6.4)\n"
+           "  --dark-tone T           darkest tone lighting asks for, thesis §8.4 (default " +
+           g(kDefaults.dark_tone) + ", " + range(kLimits.dark_tone) +
+           ")\n"
+           "  --refinement-budget N   extra points per frame where the baked hierarchy runs out\n"
+           "                          (close-ups, stretch; default " +
+           std::to_string(kDefaults.refinement_budget) + ", 0 = off, max " +
+           std::to_string(kLimits.refinement_budget.max) +
+           ")\n"
+           "  --no-silhouettes        do not draw silhouette lines\n"
+           "  --line-width PX         silhouette line width (default " +
+           g(kDefaults.line_width) + ", " + range(kLimits.line_width) +
+           ")\n"
+           "  --light X,Y,Z[,I]       a directional light toward X,Y,Z with intensity I (default "
+           "1,\n"
+           "                          " +
+           range(kLimits.light_intensity) +
+           "); repeat for up to 4; replaces the\n"
+           "                          default key light (camera space -0.5,0.6,0.6)\n"
+           "  --light-space S         camera (default: lights turn with the camera) or world\n"
+           "  --ambient A             light every point gets, " +
+           range(kLimits.ambient) +
+           " (default 0)\n"
+           "  --no-strokes            do not draw the asset's paintstrokes (STRK section)\n"
+           "  --stroke-quality Q      paintstroke breadthwise quality 0, 1, 2 or auto (GI'98 "
+           "§4.3;\n"
+           "                          default auto: by projected radius)\n"
+           "  --stroke-tolerance T[,Z]  lengthwise tolerances in pixels: tol_theta (Position\n"
+           "                          Constraint I) and tol_z (II and radius; default " +
+           g(kDefaults.stroke_tol_theta) + "," + g(kDefaults.stroke_tol_z) + ", each " +
+           range(kLimits.stroke_tol_theta) +
+           ")\n"
+           "  --stroke-lod PX         draw a stroke only where its root point's relevance radius\n"
+           "                          projects to >= PX pixels (default 0: all; " +
+           range(kLimits.stroke_lod_px) +
+           ")\n"
+           "  --stroke-budget N       tessellated stroke vertices per frame (default " +
+           std::to_string(kDefaults.stroke_vertex_budget) + ", " +
+           std::to_string(kLimits.stroke_vertex_budget.min) + ".." +
+           std::to_string(kLimits.stroke_vertex_budget.max) +
+           "; 48 bytes each);\n"
+           "                          strokes past it are left out (--stats: stroke_budget_full)\n"
+           "  --roots-out             also write roots_NNNN.csv (stroke,x,y,surface_x,surface_y:\n"
+           "                          each stroke's drawn root and its host surface point, "
+           "pixels)\n"
+           "  --dots-out              also write dots_NNNN.csv (id,x,y,size per drawn dot)\n"
+           "  --mask-out              also write mask_NNNN.png: white where the mesh covers the\n"
+           "                          pixel, black elsewhere (the object mask of stipple-measure)\n"
+           "  --no-png                do not write per-frame PNGs\n"
+           "  --no-apng               do not write anim.png\n"
+           "  --stats                 print a JSON object of counts and timings to stdout\n"
+           "  --check-gl              check glGetError after every pass and readback; a GL error\n"
+           "                          fails the run (exit 1) naming the pass; --stats counts them\n"
+           "  --rss-every N           every N frames append frame,rss_kb,ms_per_frame (resident\n"
+           "                          memory, mean frame time since the last row) to DIR/rss.csv\n"
+           "  --backend egl|osmesa    force a context backend (default: EGL, then OSMesa)\n" +
+           std::string(stipple::play::kWindowUsage) + "  -h, --help              this text\n";
+}
+
+}  // namespace stipple::play
