@@ -34,9 +34,8 @@ std::string background_default() {
     return text;
 }
 
-}  // namespace
-
-std::string usage() {
+// The view: what is played and how the camera sees it.
+std::string view_usage() {
     return "usage: stipple-play ASSET.stip --out DIR [options]\n"
            "       stipple-play ASSET.stip --window [options]   (a kiosk window; keys below)\n"
            "  --out DIR               where frame_NNNN.png and anim.png go (created if missing)\n"
@@ -70,10 +69,12 @@ std::string usage() {
            "  --yaw DEG, --pitch DEG  camera orbit (default " +
            g(kDefaults.yaw_degrees) + ", " + g(kDefaults.pitch_degrees) +
            ": looking down -Z);\n                          yaw " + range(kLimits.yaw_degrees) +
-           ", pitch " + range(kLimits.pitch_degrees) +
-           "\n"
-           "  --tone T                constant target tone " +
-           range(kLimits.constant_tone) +
+           ", pitch " + range(kLimits.pitch_degrees) + "\n";
+}
+
+// The tone, look, paintstroke, output and debugging options.
+std::string render_usage() {
+    return "  --tone T                constant target tone " + range(kLimits.constant_tone) +
            " instead of lighting (default:\n"
            "                          lighting)\n"
            "  --point-size PX         maximum stipple diameter (default " +
@@ -140,6 +141,12 @@ std::string usage() {
            "                          memory, mean frame time since the last row) to DIR/rss.csv\n"
            "  --backend egl|osmesa    force a context backend (default: EGL, then OSMesa)\n" +
            std::string(stipple::play::kWindowUsage) + "  -h, --help              this text\n";
+}
+
+}  // namespace
+
+std::string usage() {
+    return view_usage() + render_usage();
 }
 
 }  // namespace stipple::play
