@@ -2,6 +2,8 @@
 
 #include <cstddef>
 
+#include "runtime/gl_program.h"
+
 namespace stipple {
 
 namespace {
@@ -54,47 +56,6 @@ void main() {
 }
 )";
 
-GLuint compile(const GlApi& gl, GLenum type, const char* source, Status* error) {
-    GLuint s = gl.CreateShader(type);
-    gl.ShaderSource(s, 1, &source, nullptr);
-    gl.CompileShader(s);
-    GLint ok = 0;
-    gl.GetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[512] = {};
-        gl.GetShaderInfoLog(s, sizeof(log), nullptr, log);
-        *error = make_status(StatusCode::gl_error, "stroke shader compile failed: %s", log);
-        gl.DeleteShader(s);
-        return 0;
-    }
-    return s;
-}
-
-GLuint link(const GlApi& gl, Status* error) {
-    GLuint v = compile(gl, GL_VERTEX_SHADER, kStrokeVs, error);
-    GLuint f = v ? compile(gl, GL_FRAGMENT_SHADER, kStrokeFs, error) : 0;
-    if (!f) {
-        if (v) gl.DeleteShader(v);
-        return 0;
-    }
-    GLuint p = gl.CreateProgram();
-    gl.AttachShader(p, v);
-    gl.AttachShader(p, f);
-    gl.LinkProgram(p);
-    gl.DeleteShader(v);
-    gl.DeleteShader(f);
-    GLint ok = 0;
-    gl.GetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[512] = {};
-        gl.GetProgramInfoLog(p, sizeof(log), nullptr, log);
-        *error = make_status(StatusCode::gl_error, "stroke program link failed: %s", log);
-        gl.DeleteProgram(p);
-        return 0;
-    }
-    return p;
-}
-
 void attribute(const GlApi& gl, GLuint location, GLint components, size_t offset_floats) {
     gl.EnableVertexAttribArray(location);
     gl.VertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, GLsizei(sizeof(StrokeVertex)),
@@ -142,7 +103,7 @@ Status stroke_renderer_init(StrokeRenderer* r, const GlApi& gl,
     r->gl = gl;
     r->config = config;
     Status st;
-    r->program = link(gl, &st);
+    r->program = link_gl_program(gl, kStrokeVs, kStrokeFs, "stroke", &st);
     if (!r->program) return st;
     r->u_projection = gl.GetUniformLocation(r->program, "u_projection");
     r->u_light = gl.GetUniformLocation(r->program, "u_light");

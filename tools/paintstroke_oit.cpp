@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <memory>
 
+#include "runtime/gl_program.h"
+
 namespace stipple::bench {
 
 namespace {
@@ -61,20 +63,6 @@ void main() {
 }
 )";
 
-GLuint shader(const GlApi& gl, GLenum type, const char* src) {
-    GLuint s = gl.CreateShader(type);
-    gl.ShaderSource(s, 1, &src, nullptr);
-    gl.CompileShader(s);
-    GLint ok = 0;
-    gl.GetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[512] = {};
-        gl.GetShaderInfoLog(s, sizeof(log), nullptr, log);
-        std::fprintf(stderr, "peel shader: %s\n", log);
-    }
-    return s;
-}
-
 struct Peeler {
     GLuint program = 0, fbo = 0, colour = 0, depth[2] = {};
     GLint u_projection = -1, u_light = -1, u_ambient = -1, u_diffuse = -1, u_shininess = -1;
@@ -82,17 +70,12 @@ struct Peeler {
 };
 
 bool peeler_init(const GlApi& gl, int w, int h, Peeler* p) {
-    const GLuint vs = shader(gl, GL_VERTEX_SHADER, kPeelVs);
-    const GLuint fs = shader(gl, GL_FRAGMENT_SHADER, kPeelFs);
-    p->program = gl.CreateProgram();
-    gl.AttachShader(p->program, vs);
-    gl.AttachShader(p->program, fs);
-    gl.LinkProgram(p->program);
-    gl.DeleteShader(vs);
-    gl.DeleteShader(fs);
-    GLint ok = 0;
-    gl.GetProgramiv(p->program, GL_LINK_STATUS, &ok);
-    if (!ok) return false;
+    Status error;
+    p->program = link_gl_program(gl, kPeelVs, kPeelFs, "peel", &error);
+    if (!p->program) {
+        std::fprintf(stderr, "%s\n", error.message);
+        return false;
+    }
     const char* names[6] = {"u_projection", "u_light",     "u_ambient",
                             "u_diffuse",    "u_shininess", "u_prev"};
     GLint* locations[6] = {&p->u_projection, &p->u_light,     &p->u_ambient,

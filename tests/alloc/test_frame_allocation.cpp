@@ -115,16 +115,8 @@ TEST(FrameAllocation, ThreeInstancesInTheApplicationsFrameAllocateNothing) {
     ASSERT_TRUE(gl.open(&error)) << error;
     const stipple::GlApi& g = gl.gl();
     constexpr int kW = 96, kH = 72;
-    GLuint fbo = 0, rb[2] = {};
-    g.GenFramebuffers(1, &fbo);
-    g.BindFramebuffer(GL_FRAMEBUFFER, fbo);
-    g.GenRenderbuffers(2, rb);
-    g.BindRenderbuffer(GL_RENDERBUFFER, rb[0]);
-    g.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, kW, kH);
-    g.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[0]);
-    g.BindRenderbuffer(GL_RENDERBUFFER, rb[1]);
-    g.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, kW, kH);
-    g.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
+    stipple::test::TestFramebuffer framebuffer;
+    ASSERT_TRUE(framebuffer.create(g, kW, kH));
     stipple::FrameConfig config;
     config.width = kW;
     config.height = kH;
@@ -156,7 +148,7 @@ TEST(FrameAllocation, ThreeInstancesInTheApplicationsFrameAllocateNothing) {
     g_counting = true;
     uint32_t drawn = 0;
     for (int f = 0; f < 1000; ++f) {
-        g.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+        g.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.fbo());
         g.DepthMask(GL_TRUE);
         g.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         for (int i = 0; i < 3; ++i) {
@@ -179,9 +171,6 @@ TEST(FrameAllocation, ThreeInstancesInTheApplicationsFrameAllocateNothing) {
     EXPECT_EQ(hook_calls.load(), 0);
     EXPECT_GT(drawn, 3000u * 20u);  // real frames
     for (auto& p : instances) stipple::pipeline_destroy(p.get());
-    g.BindFramebuffer(GL_FRAMEBUFFER, 0);
-    g.DeleteFramebuffers(1, &fbo);
-    g.DeleteRenderbuffers(2, rb);
 }
 
 }  // namespace

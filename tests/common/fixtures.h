@@ -269,6 +269,39 @@ class HeadlessGl {
 };
 
 // Loads an asset file with the runtime's loader; on failure returns false with the message.
+// A framebuffer of the test's own, as an application has: RGBA8 colour and 24-bit depth
+// renderbuffers, bound by create(). Deleted with the object (the context must be current).
+class TestFramebuffer {
+  public:
+    TestFramebuffer() = default;
+    TestFramebuffer(const TestFramebuffer&) = delete;
+    TestFramebuffer& operator=(const TestFramebuffer&) = delete;
+    ~TestFramebuffer() {
+        if (!gl_) return;
+        gl_->BindFramebuffer(GL_FRAMEBUFFER, 0);
+        gl_->DeleteFramebuffers(1, &fbo_);
+        gl_->DeleteRenderbuffers(2, rb_);
+    }
+    bool create(const GlApi& gl, int width, int height) {
+        gl_ = &gl;
+        gl.GenFramebuffers(1, &fbo_);
+        gl.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+        gl.GenRenderbuffers(2, rb_);
+        gl.BindRenderbuffer(GL_RENDERBUFFER, rb_[0]);
+        gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+        gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb_[0]);
+        gl.BindRenderbuffer(GL_RENDERBUFFER, rb_[1]);
+        gl.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+        gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb_[1]);
+        return gl.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    }
+    GLuint fbo() const { return fbo_; }
+
+  private:
+    const GlApi* gl_ = nullptr;
+    GLuint fbo_ = 0, rb_[2] = {};
+};
+
 inline bool load_baked(const std::string& path, Asset* out, std::string* error) {
     const Status status = load_asset_file(path.c_str(), out);
     if (!status.ok()) *error = path + ": " + status.message;

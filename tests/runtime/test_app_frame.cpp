@@ -75,16 +75,7 @@ class AppFrame : public ::testing::Test {
                                &asset_, &error))
             << error;
         const GlApi& gl = gl_.gl();
-        gl.GenFramebuffers(1, &fbo_);
-        gl.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
-        gl.GenRenderbuffers(2, rb_);
-        gl.BindRenderbuffer(GL_RENDERBUFFER, rb_[0]);
-        gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, kW, kH);
-        gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb_[0]);
-        gl.BindRenderbuffer(GL_RENDERBUFFER, rb_[1]);
-        gl.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, kW, kH);
-        gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb_[1]);
-        ASSERT_EQ(gl.CheckFramebufferStatus(GL_FRAMEBUFFER), GLenum(GL_FRAMEBUFFER_COMPLETE));
+        ASSERT_TRUE(framebuffer_.create(gl, kW, kH));
         program_ = gl.CreateProgram();
         gl.AttachShader(program_, shader(gl, GL_VERTEX_SHADER, kQuadVs));
         gl.AttachShader(program_, shader(gl, GL_FRAGMENT_SHADER, kQuadFs));
@@ -115,7 +106,7 @@ class AppFrame : public ::testing::Test {
     // and returns the frame. `before`/`after`: the application's state around the call.
     std::vector<uint8_t> frame(float quad_z, float clear, AppState* before, AppState* after) {
         const GlApi& gl = gl_.gl();
-        gl.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+        gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_.fbo());
         gl.Viewport(0, 0, kW, kH);
         gl.DepthMask(GL_TRUE);
         gl.ClearColor(clear, clear, clear, 1.0f);
@@ -151,7 +142,8 @@ class AppFrame : public ::testing::Test {
     HeadlessGl gl_;
     Asset asset_;
     std::unique_ptr<Pipeline> pipeline_ = std::make_unique<Pipeline>();
-    GLuint fbo_ = 0, rb_[2] = {}, program_ = 0, vao_ = 0, vbo_ = 0;
+    TestFramebuffer framebuffer_;
+    GLuint program_ = 0, vao_ = 0, vbo_ = 0;
     AppView view_;
     glm::mat4 model_ = glm::mat4(1.0f);
 };
@@ -240,7 +232,7 @@ TEST_F(AppFrame, ModelMatrixPlacesTheCharacter) {
 // bound one stays bound.
 TEST_F(AppFrame, DrawsIntoANamedFramebuffer) {
     const GlApi& gl = gl_.gl();
-    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_.fbo());
     gl.DepthMask(GL_TRUE);
     gl.ClearColor(1, 1, 1, 1);
     gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -254,7 +246,7 @@ TEST_F(AppFrame, DrawsIntoANamedFramebuffer) {
     gl.ClearColor(0, 1, 0, 1);
     gl.Clear(GL_COLOR_BUFFER_BIT);
     AppView v = view_;
-    v.framebuffer = fbo_;
+    v.framebuffer = framebuffer_.fbo();
     AnimationState state;
     state.clip = 0;
     state.time = 0.5f;
@@ -264,7 +256,7 @@ TEST_F(AppFrame, DrawsIntoANamedFramebuffer) {
     EXPECT_EQ(GLuint(bound), other);
     std::vector<uint8_t> mine(size_t(kW) * kH * 4), theirs(mine.size());
     gl.ReadPixels(0, 0, kW, kH, GL_RGBA, GL_UNSIGNED_BYTE, theirs.data());
-    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_.fbo());
     gl.ReadPixels(0, 0, kW, kH, GL_RGBA, GL_UNSIGNED_BYTE, mine.data());
     size_t ink = 0, green = 0;
     for (size_t i = 0; i < mine.size(); i += 4) {

@@ -140,23 +140,15 @@ TEST(CApi, DrawsIntoTheApplicationsFramebuffer) {
     for (int k = 0; k < 4; ++k) view.model[k * 5] = 1.0f;
     view.viewport[2] = 320;
     view.viewport[3] = 240;
-    GLuint fbo = 0, rb[2] = {};
-    g.GenFramebuffers(1, &fbo);
-    g.BindFramebuffer(GL_FRAMEBUFFER, fbo);
-    g.GenRenderbuffers(2, rb);
-    g.BindRenderbuffer(GL_RENDERBUFFER, rb[0]);
-    g.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 320, 240);
-    g.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[0]);
-    g.BindRenderbuffer(GL_RENDERBUFFER, rb[1]);
-    g.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, 320, 240);
-    g.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
+    TestFramebuffer framebuffer;
+    ASSERT_TRUE(framebuffer.create(g, 320, 240));
     g.Viewport(0, 0, 320, 240);
     g.DepthMask(GL_TRUE);  // stipple_player_create drew a frame of its own (player state)
     g.ClearColor(1, 1, 1, 1);
     g.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     stipple_player_draw_into(player, &view, 0, 0.5f, -1, 0.0f, 0.0f);
     std::vector<uint8_t> app(320 * 240 * 4), own(320 * 240 * 4);
-    g.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    g.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.fbo());
     g.ReadPixels(0, 0, 320, 240, GL_RGBA, GL_UNSIGNED_BYTE, app.data());
     stipple_player_draw(player, 0, 0.5f);
     stipple_player_read_rgba(player, own.data());
@@ -172,9 +164,6 @@ TEST(CApi, DrawsIntoTheApplicationsFramebuffer) {
     view.viewport[2] = 0;  // out of range: refused with a message, nothing drawn
     stipple_player_draw_into(player, &view, 0, 0.5f, -1, 0.0f, 0.0f);
     EXPECT_NE(std::strstr(stipple_last_error(), "viewport"), nullptr) << stipple_last_error();
-    g.BindFramebuffer(GL_FRAMEBUFFER, 0);
-    g.DeleteFramebuffers(1, &fbo);
-    g.DeleteRenderbuffers(2, rb);
     stipple_player_destroy(player);
     stipple_asset_destroy(asset);
 }

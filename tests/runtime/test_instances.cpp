@@ -95,16 +95,8 @@ TEST_F(Instances, ABlockOfTheQueriedSizeIsEnoughAndOneByteLessIsNot) {
 TEST_F(Instances, EachInstanceDrawsInTheSharedFrameWhatItDrawsAlone) {
     const stipple::GlApi& g = gl_.gl();
     constexpr int kW = 480, kH = 160;
-    GLuint fbo = 0, rb[2] = {};
-    g.GenFramebuffers(1, &fbo);
-    g.BindFramebuffer(GL_FRAMEBUFFER, fbo);
-    g.GenRenderbuffers(2, rb);
-    g.BindRenderbuffer(GL_RENDERBUFFER, rb[0]);
-    g.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, kW, kH);
-    g.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[0]);
-    g.BindRenderbuffer(GL_RENDERBUFFER, rb[1]);
-    g.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, kW, kH);
-    g.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
+    TestFramebuffer framebuffer;
+    ASSERT_TRUE(framebuffer.create(g, kW, kH));
     stipple_player_desc d = desc_;
     d.width = kW;
     d.height = kH;
@@ -119,7 +111,7 @@ TEST_F(Instances, EachInstanceDrawsInTheSharedFrameWhatItDrawsAlone) {
     view.viewport[2] = kW;
     view.viewport[3] = kH;
     auto draw = [&](int only) {  // only: one instance, or -1 for all three
-        g.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+        g.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.fbo());
         g.Viewport(0, 0, kW, kH);
         g.DepthMask(GL_TRUE);
         g.ClearColor(1, 1, 1, 1);
@@ -131,7 +123,7 @@ TEST_F(Instances, EachInstanceDrawsInTheSharedFrameWhatItDrawsAlone) {
             stipple_player_draw_into(players[i], &view, 0, 0.2f + 0.5f * i, -1, 0.0f, 0.0f);
         }
         std::vector<uint8_t> rgba(size_t(kW) * kH * 4);
-        g.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+        g.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.fbo());
         g.ReadPixels(0, 0, kW, kH, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
         return rgba;
     };
@@ -162,9 +154,6 @@ TEST_F(Instances, EachInstanceDrawsInTheSharedFrameWhatItDrawsAlone) {
     }
     EXPECT_LT(overlap, compared[1] / 10) << "the instances should barely overlap";
     for (auto& p : players) stipple_player_destroy(p);
-    g.BindFramebuffer(GL_FRAMEBUFFER, 0);
-    g.DeleteFramebuffers(1, &fbo);
-    g.DeleteRenderbuffers(2, rb);
 }
 
 }  // namespace

@@ -35,26 +35,13 @@ class StrokeRendererTest : public ::testing::Test {
         std::string error;
         ASSERT_TRUE(gl_.open(&error)) << error;
         const GlApi& gl = gl_.gl();
-        gl.GenFramebuffers(1, &fbo_);
-        gl.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
-        gl.GenRenderbuffers(2, rb_);
-        gl.BindRenderbuffer(GL_RENDERBUFFER, rb_[0]);
-        gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, kSize, kSize);
-        gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb_[0]);
-        gl.BindRenderbuffer(GL_RENDERBUFFER, rb_[1]);
-        gl.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, kSize, kSize);
-        gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb_[1]);
-        ASSERT_EQ(gl.CheckFramebufferStatus(GL_FRAMEBUFFER), GLenum(GL_FRAMEBUFFER_COMPLETE));
+        ASSERT_TRUE(framebuffer_.create(gl, kSize, kSize));
         gl.Viewport(0, 0, kSize, kSize);
         while (gl.GetError() != GL_NO_ERROR) {
         }
     }
     void TearDown() override {
-        const GlApi& gl = gl_.gl();
         if (renderer_.program) stroke_renderer_destroy(&renderer_);
-        gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
-        gl.DeleteFramebuffers(1, &fbo_);
-        gl.DeleteRenderbuffers(2, rb_);
     }
     void init(uint32_t max_vertices, uint32_t max_indices) {
         StrokeRendererConfig config;
@@ -88,7 +75,7 @@ class StrokeRendererTest : public ::testing::Test {
     }
 
     HeadlessGl gl_;
-    GLuint fbo_ = 0, rb_[2] = {};
+    TestFramebuffer framebuffer_;
     StrokeRenderer renderer_;
 };
 

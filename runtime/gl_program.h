@@ -1,0 +1,14 @@
+// Compiling and linking a GLSL ES program from a vertex and a fragment shader: the one place
+// the renderers (runtime/renderer.cpp, runtime/stroke_renderer.cpp) and tools build programs.
+#pragma once
+#include "runtime/gl_api.h"
+#include "runtime/status.h"
+
+namespace stipple {
+
+// The linked program, or 0 with *error set (gl_error naming `what` and the driver's log).
+// The shaders are deleted either way.
+GLuint link_gl_program(const GlApi& gl, const char* vertex_source, const char* fragment_source,
+                       const char* what, Status* error);
+
+}  // namespace stipple
