@@ -8,7 +8,8 @@ namespace stipple {
 namespace {
 
 // The body in the paper colour, into the application's framebuffer (its vertices were
-// uploaded by renderer_draw_mesh this frame).
+// uploaded by renderer_draw_mesh this frame). GL_CULL_FACE is left off (restored later by
+// gl_state_restore).
 void draw_body(Renderer* r, const glm::mat4& vp) {
     const GlApi& gl = r->gl;
     gl.Enable(GL_DEPTH_TEST);
@@ -16,14 +17,13 @@ void draw_body(Renderer* r, const glm::mat4& vp) {
     gl.DepthMask(GL_TRUE);
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl.Disable(GL_BLEND);
-    gl.Disable(GL_CULL_FACE);
     gl.UseProgram(r->mesh_program);
     gl.UniformMatrix4fv(r->mesh_vp, 1, GL_FALSE, &vp[0][0]);
     gl.Uniform1f(r->mesh_bias, r->config.depth_bias);
     const float* paper = r->config.paper;
     gl.Uniform4f(r->mesh_paper, paper[0], paper[1], paper[2], 1.0f);
     gl.BindVertexArray(r->mesh_vao);
-    gl.DrawElements(GL_TRIANGLES, GLsizei(r->config.triangle_count * 3), GL_UNSIGNED_INT, nullptr);
+    renderer_draw_triangles(r, vp);  // culled as offscreen
     renderer_check_errors(r, "app depth");
 }
 

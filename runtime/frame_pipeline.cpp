@@ -303,19 +303,19 @@ Status place_rest_pose(Pipeline* p) {
 
 // The renderer's settings: the resolved frame settings and the asset's buffer sizes.
 RendererConfig renderer_config(const Pipeline& p) {
-    const Asset& asset = *p.asset;
     const FrameConfig& c = p.config;
     RendererConfig rc;
     rc.width = c.width;
     rc.height = c.height;
     rc.max_points = p.point_capacity;
-    rc.vertex_count = asset.mesh.vertex_count;
-    rc.max_lines = asset.edges.edge_count;
+    rc.vertex_count = p.asset->mesh.vertex_count;
+    rc.max_lines = p.asset->edges.edge_count;
     rc.line_width = c.line_width;
     rc.depth_copy = c.depth_readback;
     rc.check_errors = c.check_gl_errors;
-    rc.indices = asset.mesh.indices;
-    rc.triangle_count = asset.mesh.triangle_count;
+    rc.indices = p.asset->mesh.indices;
+    rc.triangle_count = p.asset->mesh.triangle_count;
+    rc.triangle_double_sided = p.asset->sides.triangle_double_sided;
     std::memcpy(rc.background, c.background, sizeof(rc.background));
     std::memcpy(rc.paper, c.paper, sizeof(rc.paper));
     std::memcpy(rc.ink, c.ink, sizeof(rc.ink));

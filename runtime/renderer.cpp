@@ -1,6 +1,9 @@
 #include "runtime/renderer.h"
 
 #include <cstdio>
+#include <cstring>
+
+#include "runtime/gl_program.h"
 
 namespace stipple {
 
@@ -16,6 +19,8 @@ void main() {
 }
 )";
 
+// The mesh pass's fragment shader with the depth copy (RendererConfig::depth_copy) and
+// without it: no second output to compute when there is nowhere to write it.
 const char* kMeshFs = R"(#version 300 es
 precision highp float;
 uniform vec4 u_paper;
@@ -25,6 +30,13 @@ void main() {
     o_color = vec4(u_paper.rgb, 1.0);
     o_depth = vec4(gl_FragCoord.z);
 }
+)";
+
+const char* kMeshFsNoCopy = R"(#version 300 es
+precision highp float;
+uniform vec4 u_paper;
+layout(location = 0) out vec4 o_color;
+void main() { o_color = vec4(u_paper.rgb, 1.0); }
 )";
 
 // Each dot is a disc with a one-pixel linear antialiasing ramp centred on its edge; such a
@@ -101,48 +113,6 @@ uniform vec4 u_ink;
 layout(location = 0) out vec4 o_color;
 void main() { o_color = vec4(u_ink.rgb, 1.0); }
 )";
-
-GLuint compile(const GlApi& gl, GLenum type, const char* source, Status* error) {
-    GLuint s = gl.CreateShader(type);
-    gl.ShaderSource(s, 1, &source, nullptr);
-    gl.CompileShader(s);
-    GLint ok = 0;
-    gl.GetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[512] = {};
-        gl.GetShaderInfoLog(s, sizeof(log), nullptr, log);
-        *error = make_status(StatusCode::gl_error, "shader compile failed: %s", log);
-        gl.DeleteShader(s);
-        return 0;
-    }
-    return s;
-}
-
-// The program of two shaders, or 0 with *error set.
-GLuint link(const GlApi& gl, const char* vs, const char* fs, Status* error) {
-    GLuint v = compile(gl, GL_VERTEX_SHADER, vs, error);
-    GLuint f = v ? compile(gl, GL_FRAGMENT_SHADER, fs, error) : 0;
-    if (!f) {
-        if (v) gl.DeleteShader(v);
-        return 0;
-    }
-    GLuint p = gl.CreateProgram();
-    gl.AttachShader(p, v);
-    gl.AttachShader(p, f);
-    gl.LinkProgram(p);
-    gl.DeleteShader(v);
-    gl.DeleteShader(f);
-    GLint ok = 0;
-    gl.GetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[512] = {};
-        gl.GetProgramInfoLog(p, sizeof(log), nullptr, log);
-        *error = make_status(StatusCode::gl_error, "program link failed: %s", log);
-        gl.DeleteProgram(p);
-        return 0;
-    }
-    return p;
-}
 
 GLuint renderbuffer(const GlApi& gl, GLenum format, int w, int h) {
     GLuint rb = 0;
@@ -233,9 +203,10 @@ Status create_framebuffers(Renderer* r) {
 Status create_programs(Renderer* r) {
     const GlApi& gl = r->gl;
     Status st;
-    r->mesh_program = link(gl, kMeshVs, kMeshFs, &st);
-    r->point_program = r->mesh_program ? link(gl, kPointVs, kPointFs, &st) : 0;
-    r->line_program = r->point_program ? link(gl, kLineVs, kLineFs, &st) : 0;
+    r->mesh_program =
+        link_gl_program(gl, kMeshVs, r->config.depth_copy ? kMeshFs : kMeshFsNoCopy, "mesh", &st);
+    r->point_program = r->mesh_program ? link_gl_program(gl, kPointVs, kPointFs, "dot", &st) : 0;
+    r->line_program = r->point_program ? link_gl_program(gl, kLineVs, kLineFs, "line", &st) : 0;
     if (!r->line_program) return st;
     r->mesh_vp = gl.GetUniformLocation(r->mesh_program, "u_view_projection");
     r->mesh_bias = gl.GetUniformLocation(r->mesh_program, "u_depth_bias");
@@ -248,6 +219,39 @@ Status create_programs(Renderer* r) {
     return {};
 }
 
+// Uploads the triangle list into the bound element buffer, single-sided triangles first and
+// then the double-sided ones (each group in its original order), through a fixed block on
+// the stack: nothing is allocated. Returns the number of single-sided triangles.
+uint32_t upload_indices(const GlApi& gl, const RendererConfig& c) {
+    const GLsizeiptr bytes = GLsizeiptr(size_t(c.triangle_count) * 12);
+    if (!c.triangle_double_sided) {
+        gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, bytes, c.indices, GL_STATIC_DRAW);
+        return c.triangle_count;
+    }
+    gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, bytes, nullptr, GL_STATIC_DRAW);
+    constexpr uint32_t kBlock = 1024;  // triangles per upload
+    uint32_t block[kBlock * 3];
+    uint32_t written = 0, single = 0;
+    for (uint8_t sided = 0; sided < 2; ++sided) {  // 0: single-sided, 1: double-sided
+        uint32_t n = 0;
+        for (uint32_t t = 0; t <= c.triangle_count; ++t) {
+            const bool end = t == c.triangle_count;
+            if (!end && (c.triangle_double_sided[t] != 0) == (sided != 0)) {
+                std::memcpy(block + size_t(n) * 3, c.indices + size_t(t) * 3, 12);
+                ++n;
+            }
+            if (n == kBlock || (end && n > 0)) {
+                gl.BufferSubData(GL_ELEMENT_ARRAY_BUFFER, GLintptr(size_t(written) * 12),
+                                 GLsizeiptr(size_t(n) * 12), block);
+                written += n;
+                n = 0;
+            }
+        }
+        if (sided == 0) single = written;
+    }
+    return single;
+}
+
 // Vertex arrays and buffers at their capacities; the triangle list is uploaded once.
 void create_buffers(Renderer* r) {
     const GlApi& gl = r->gl;
@@ -257,8 +261,7 @@ void create_buffers(Renderer* r) {
     r->mesh_vbo = dynamic_buffer(gl, 0, 3, size_t(config.vertex_count) * 12);
     gl.GenBuffers(1, &r->mesh_ibo);
     gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->mesh_ibo);
-    gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(size_t(config.triangle_count) * 12),
-                  config.indices, GL_STATIC_DRAW);
+    r->single_sided_count = upload_indices(gl, config);
 
     gl.GenVertexArrays(1, &r->point_vao);
     gl.BindVertexArray(r->point_vao);
@@ -316,16 +319,21 @@ void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const flo
     const GlApi& gl = r->gl;
     const RendererConfig& c = r->config;
     gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
-    const GLenum both[2] = {GL_COLOR_ATTACHMENT0,
-                            c.depth_copy ? GLenum(GL_COLOR_ATTACHMENT1) : GLenum(GL_NONE)};
-    gl.DrawBuffers(2, both);
+    const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    gl.DrawBuffers(c.depth_copy ? 2 : 1, both);
     gl.Viewport(0, 0, c.width, c.height);
     const float background[4] = {c.background[0], c.background[1], c.background[2], 1.0f};
     const float far_depth[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl.ClearBufferfv(GL_COLOR, 0, background);
     if (c.depth_copy) gl.ClearBufferfv(GL_COLOR, 1, far_depth);
     gl.DepthMask(GL_TRUE);  // the points pass leaves depth writes off; glClear obeys the mask
     gl.Clear(GL_DEPTH_BUFFER_BIT);
+    // Paper the colour of the background (the default): the clear already painted the body,
+    // so the pass writes depth only (and the depth copy, which needs colour writes).
+    const bool depth_only =
+        !c.depth_copy && std::memcmp(c.paper, c.background, sizeof(c.paper)) == 0;
+    if (depth_only) gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
 
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_LESS);
@@ -337,8 +345,31 @@ void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const flo
     gl.BindVertexArray(r->mesh_vao);
     gl.BindBuffer(GL_ARRAY_BUFFER, r->mesh_vbo);
     gl.BufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(vertex_count) * 12), positions);
-    gl.DrawElements(GL_TRIANGLES, GLsizei(c.triangle_count * 3), GL_UNSIGNED_INT, nullptr);
+    renderer_draw_triangles(r, view_projection);
+    if (depth_only) gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     check_pass(r, "depth");
+}
+
+void renderer_draw_triangles(Renderer* r, const glm::mat4& view_projection) {
+    const GlApi& gl = r->gl;
+    const uint32_t total = r->config.triangle_count, single = r->single_sided_count;
+    gl.Disable(GL_CULL_FACE);
+    if (single > 0) {
+        GLint mode = GL_BACK, front = GL_CCW;
+        gl.GetIntegerv(GL_CULL_FACE_MODE, &mode);
+        gl.GetIntegerv(GL_FRONT_FACE, &front);
+        // The mesh's back faces turn clockwise on screen under a camera's view-projection
+        // (determinant < 0), counter-clockwise under a mirrored one (determinant > 0).
+        const float det = glm::determinant(view_projection);
+        const bool culls_cw = (mode == GL_BACK) == (front == GL_CCW);
+        if (mode != GL_FRONT_AND_BACK && det != 0.0f && culls_cw == (det < 0.0f))
+            gl.Enable(GL_CULL_FACE);
+        gl.DrawElements(GL_TRIANGLES, GLsizei(single * 3), GL_UNSIGNED_INT, nullptr);
+        gl.Disable(GL_CULL_FACE);
+    }
+    if (total > single)
+        gl.DrawElements(GL_TRIANGLES, GLsizei((total - single) * 3), GL_UNSIGNED_INT,
+                        reinterpret_cast<const void*>(size_t(single) * 12));
 }
 
 void renderer_begin_overlay(Renderer* r) {

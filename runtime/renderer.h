@@ -2,6 +2,8 @@
 // pass pushed slightly behind the surface, then every point is drawn as a round,
 // antialiased dot of its computed diameter, whole when its centre passes the depth test
 // against that pass (tested in the vertex shader on the depth texture), not at all otherwise.
+// The mesh pass culls the back faces of single-sided triangles (double-sided ones are drawn
+// from both sides) and writes depth only when the paper is the background's colour.
 // All GL objects are created in renderer_init; drawing a frame creates nothing.
 #pragma once
 #include <cstddef>
@@ -25,6 +27,10 @@ struct RendererConfig {
     float line_width = 0.0f;            // silhouette width in pixels (clamped to the GL range)
     const uint32_t* indices = nullptr;  // triangle list, uploaded once
     uint32_t triangle_count = 0;
+    // Per triangle, 1 if double-sided (SidesView::triangle_double_sided): drawn from both
+    // sides. The others are single-sided and the mesh pass culls their back faces (CCW
+    // front, the bake's outward winding). nullptr: every triangle single-sided.
+    const uint8_t* triangle_double_sided = nullptr;
     float background[3] = {};
     float paper[3] = {1.0f, 1.0f, 1.0f};  // colour of the depth pass (the object's body)
     float ink[3] = {0.0f, 0.0f, 0.0f};
@@ -60,6 +66,8 @@ struct Renderer {
     GLint mesh_vp = -1, mesh_bias = -1, mesh_paper = -1, point_vp = -1, point_ink = -1,
           point_depth = -1;
     GLuint mesh_vao = 0, mesh_vbo = 0, mesh_ibo = 0;
+    // mesh_ibo holds the single-sided triangles first (this many), then the double-sided.
+    uint32_t single_sided_count = 0;
     GLuint point_vao = 0, point_pos_vbo = 0, point_size_vbo = 0;
     GLuint line_program = 0, line_vao = 0, line_vbo = 0;
     GLint line_vp = -1, line_ink = -1;
@@ -75,6 +83,14 @@ void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const flo
                         uint32_t vertex_count);
 void renderer_draw_points(Renderer* r, const glm::mat4& view_projection, const float* positions,
                           const float* sizes, uint32_t point_count);
+
+// Draws the mesh's triangles (mesh_ibo, mesh_vao bound) with the current program and
+// framebuffer: the single-sided ones with back faces culled, the double-sided ones without.
+// Which winding is culled follows the sign of det(view_projection) (a mirrored transform
+// turns the back faces counter-clockwise on screen); the context's glCullFace / glFrontFace
+// are not changed, and where they cannot cull that winding every triangle is drawn. Leaves
+// GL_CULL_FACE off.
+void renderer_draw_triangles(Renderer* r, const glm::mat4& view_projection);
 
 // Binds the offscreen framebuffer (colour and depth; not the depth copy) and its viewport for a
 // pass that draws its own geometry over the mesh pass (paintstrokes, runtime/stroke_stage.h).
