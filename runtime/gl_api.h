@@ -79,7 +79,9 @@ namespace stipple {
     X(PFNGLGETBOOLEANVPROC, GetBooleanv)                         \
     X(PFNGLISENABLEDPROC, IsEnabled)                             \
     X(PFNGLCOLORMASKPROC, ColorMask)                             \
-    X(PFNGLBLENDFUNCSEPARATEPROC, BlendFuncSeparate)
+    X(PFNGLBLENDFUNCSEPARATEPROC, BlendFuncSeparate)             \
+    X(PFNGLCULLFACEPROC, CullFace)                               \
+    X(PFNGLFRONTFACEPROC, FrontFace)
 
 struct GlApi {
 #define STIPPLE_GL_MEMBER(type, name) type name = nullptr;

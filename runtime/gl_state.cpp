@@ -25,6 +25,8 @@ GlStateSnapshot gl_state_save(const GlApi& gl) {
     gl.ActiveTexture(GLenum(s.active_texture));
     gl.GetIntegerv(GL_VIEWPORT, s.viewport);
     gl.GetIntegerv(GL_DEPTH_FUNC, &s.depth_func);
+    gl.GetIntegerv(GL_CULL_FACE_MODE, &s.cull_face_mode);
+    gl.GetIntegerv(GL_FRONT_FACE, &s.front_face);
     gl.GetIntegerv(GL_BLEND_SRC_RGB, &s.blend_src_rgb);
     gl.GetIntegerv(GL_BLEND_DST_RGB, &s.blend_dst_rgb);
     gl.GetIntegerv(GL_BLEND_SRC_ALPHA, &s.blend_src_alpha);
@@ -49,6 +51,8 @@ void gl_state_restore(const GlApi& gl, const GlStateSnapshot& s) {
     gl.ActiveTexture(GLenum(s.active_texture));
     gl.Viewport(s.viewport[0], s.viewport[1], s.viewport[2], s.viewport[3]);
     gl.DepthFunc(GLenum(s.depth_func));
+    gl.CullFace(GLenum(s.cull_face_mode));
+    gl.FrontFace(GLenum(s.front_face));
     gl.BlendFuncSeparate(GLenum(s.blend_src_rgb), GLenum(s.blend_dst_rgb),
                          GLenum(s.blend_src_alpha), GLenum(s.blend_dst_alpha));
     set_enabled(gl, GL_BLEND, s.blend);

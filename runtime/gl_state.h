@@ -13,6 +13,7 @@ struct GlStateSnapshot {
     GLint active_texture = GL_TEXTURE0, texture_2d_unit0 = 0;
     GLint viewport[4] = {};
     GLint depth_func = GL_LESS;
+    GLint cull_face_mode = GL_BACK, front_face = GL_CCW;
     GLint blend_src_rgb = GL_ONE, blend_dst_rgb = GL_ZERO, blend_src_alpha = GL_ONE,
           blend_dst_alpha = GL_ZERO;
     GLboolean blend = GL_FALSE, depth_test = GL_FALSE, cull_face = GL_FALSE;

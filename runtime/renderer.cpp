@@ -355,15 +355,15 @@ void renderer_draw_triangles(Renderer* r, const glm::mat4& view_projection) {
     const uint32_t total = r->config.triangle_count, single = r->single_sided_count;
     gl.Disable(GL_CULL_FACE);
     if (single > 0) {
-        GLint mode = GL_BACK, front = GL_CCW;
-        gl.GetIntegerv(GL_CULL_FACE_MODE, &mode);
-        gl.GetIntegerv(GL_FRONT_FACE, &front);
-        // The mesh's back faces turn clockwise on screen under a camera's view-projection
-        // (determinant < 0), counter-clockwise under a mirrored one (determinant > 0).
+        // The mesh's front faces (counter-clockwise, glTF's winding) stay counter-clockwise on
+        // screen under a camera's view-projection (determinant < 0) and turn clockwise under a
+        // mirrored one (determinant > 0, e.g. a negative-scale model matrix).
         const float det = glm::determinant(view_projection);
-        const bool culls_cw = (mode == GL_BACK) == (front == GL_CCW);
-        if (mode != GL_FRONT_AND_BACK && det != 0.0f && culls_cw == (det < 0.0f))
+        if (det != 0.0f) {
+            gl.FrontFace(det < 0.0f ? GL_CCW : GL_CW);
+            gl.CullFace(GL_BACK);
             gl.Enable(GL_CULL_FACE);
+        }
         gl.DrawElements(GL_TRIANGLES, GLsizei(single * 3), GL_UNSIGNED_INT, nullptr);
         gl.Disable(GL_CULL_FACE);
     }

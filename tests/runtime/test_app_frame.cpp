@@ -32,12 +32,13 @@ void main() { o = vec4(1.0, 0.0, 0.0, 1.0); }
 
 // The application's GL state, queried independently of runtime/gl_state.h.
 struct AppState {
-    GLint program, vao, array_buffer, fbo, viewport[4], depth_func, src, dst;
+    GLint program, vao, array_buffer, fbo, viewport[4], depth_func, src, dst, cull_mode, front_face;
     GLboolean blend, depth_test, depth_mask;
     bool operator==(const AppState& o) const {
         return program == o.program && vao == o.vao && array_buffer == o.array_buffer &&
                fbo == o.fbo && depth_func == o.depth_func && src == o.src && dst == o.dst &&
-               blend == o.blend && depth_test == o.depth_test && depth_mask == o.depth_mask &&
+               cull_mode == o.cull_mode && front_face == o.front_face && blend == o.blend &&
+               depth_test == o.depth_test && depth_mask == o.depth_mask &&
                viewport[0] == o.viewport[0] && viewport[1] == o.viewport[1] &&
                viewport[2] == o.viewport[2] && viewport[3] == o.viewport[3];
     }
@@ -53,6 +54,8 @@ AppState query(const GlApi& gl) {
     gl.GetIntegerv(GL_DEPTH_FUNC, &s.depth_func);
     gl.GetIntegerv(GL_BLEND_SRC_RGB, &s.src);
     gl.GetIntegerv(GL_BLEND_DST_RGB, &s.dst);
+    gl.GetIntegerv(GL_CULL_FACE_MODE, &s.cull_mode);
+    gl.GetIntegerv(GL_FRONT_FACE, &s.front_face);
     s.blend = gl.IsEnabled(GL_BLEND);
     s.depth_test = gl.IsEnabled(GL_DEPTH_TEST);
     gl.GetBooleanv(GL_DEPTH_WRITEMASK, &s.depth_mask);
@@ -125,6 +128,8 @@ class AppFrame : public ::testing::Test {
         gl.BlendFunc(GL_ONE, GL_ONE);
         gl.DepthFunc(GL_GREATER);
         gl.DepthMask(GL_FALSE);
+        gl.CullFace(GL_FRONT);  // culling itself off: these only have to survive
+        gl.FrontFace(GL_CW);
         gl.Viewport(3, 5, 100, 50);
         *before = query(gl);
         AnimationState state;

@@ -128,9 +128,9 @@ TEST_F(MeshCulling, DoubleSidedIgnoresCullingLeftOn) {
     EXPECT_FALSE(gl_.gl().IsEnabled(GL_CULL_FACE));
 }
 
-// A context whose glFrontFace is clockwise: culling would remove the front faces, so the
-// renderer draws every triangle instead.
-TEST_F(MeshCulling, ClockwiseFrontFaceDrawsEverything) {
+// A context whose glFrontFace is clockwise: the renderer sets the winding itself, so the
+// front quad is drawn and the back one culled all the same.
+TEST_F(MeshCulling, ClockwiseFrontFaceOfTheContextDoesNotMatter) {
     init(nullptr, false);
     using FrontFace = void (*)(GLenum);
     auto front_face =
@@ -139,19 +139,19 @@ TEST_F(MeshCulling, ClockwiseFrontFaceDrawsEverything) {
     front_face(GL_CW);
     draw();
     front_face(GL_CCW);
-    EXPECT_TRUE(is(centre(0), 255, 255, 255));
-    EXPECT_TRUE(is(centre(1), 255, 255, 255));
+    EXPECT_TRUE(is(centre(0), 255, 255, 255));  // paper
+    EXPECT_TRUE(is(centre(1), 0, 0, 255));      // background
 }
 
 // A mirrored view-projection (x flipped: determinant > 0) shows the front quad on the right,
-// clockwise on screen: it is still drawn. (The back faces are then counter-clockwise, which
-// GL's default glCullFace / glFrontFace do not cull: both quads are drawn.)
+// clockwise on screen: it is still drawn, and the back quad (now on the left) still culled.
 TEST_F(MeshCulling, MirroredViewKeepsTheFrontFaces) {
     init(nullptr, false);
     glm::mat4 mirrored = camera();
     mirrored[0][0] = -1.0f;
     draw(mirrored);
     EXPECT_TRUE(is(centre(1), 255, 255, 255));
+    EXPECT_TRUE(is(centre(0), 0, 0, 255));
 }
 
 // Paper = background: the pass writes depth only. The dot over the front quad is drawn (the
