@@ -2,7 +2,8 @@
 // pass + silhouettes + sized dots) against the simplest alternative in the same run —
 // drawing every point of the hierarchy as a fixed 2.5 px dot over the same depth pass (a
 // static point cloud: no skinning of points, no relevance, no sizing).
-// CesiumMan at 20k and 100k points, 1280x720; reports ms per frame and ns per point.
+// CesiumMan at 20k and 100k points, 1280x720; reports ms per frame and ns per point, and the
+// raster floor: the same frame's GL work (depth pass + the dots drawn) with no CPU stage.
 #include <benchmark/benchmark.h>
 
 #include <memory>
@@ -84,7 +85,26 @@ void BM_StaticPointCloudFrame(benchmark::State& state) {
     per_point(state, s->asset.points.point_count);
 }
 
+// The raster floor of the stipple frame (issue 9): exactly the GL work of the last frame —
+// the depth pass of the posed mesh and the dots it drew — with no CPU stage. The frame's
+// ratio to this is what the CPU stages and the passes' overheads cost on top.
+void BM_RasterFloor(benchmark::State& state) {
+    Setup* s = setup(uint32_t(state.range(0)));
+    if (!s) return state.SkipWithError("no headless context or asset");
+    stipple::Pipeline& p = *s->pipeline;
+    stipple::pipeline_frame(&p, 0, 0.5f, nullptr);  // the frame whose dots are replayed
+    for (auto _ : state) {
+        stipple::renderer_draw_mesh(&p.renderer, p.view_projection, p.vertex_positions.get(),
+                                    s->asset.mesh.vertex_count);
+        stipple::renderer_draw_points(&p.renderer, p.view_projection, p.draw_positions.get(),
+                                      p.draw_sizes.get(), p.points_drawn);
+        p.renderer.gl.Finish();
+    }
+    state.counters["dots_drawn"] = p.points_drawn;
+}
+
 BENCHMARK(BM_StippleFrame)->Arg(20000)->Arg(100000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_RasterFloor)->Arg(20000)->Arg(100000)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_StaticPointCloudFrame)
     ->Arg(20000)
     ->Arg(100000)
