@@ -10,7 +10,12 @@ namespace stipple::play {
 namespace {
 
 const FrameSettings& kLimits = kFrameSettings;
-const FrameConfig kDefaults = default_frame_config();
+// The resolved defaults, made on first use: usage() runs while other files' statics are
+// initialised (stipple-play's parser), so this must not be a namespace-scope object.
+const FrameConfig& defaults() {
+    static const FrameConfig d = default_frame_config();
+    return d;
+}
 
 std::string g(double v) {
     char text[32];
@@ -30,7 +35,7 @@ unsigned rgb_of(const float* c) {
 
 std::string background_default() {
     char text[8];
-    std::snprintf(text, sizeof(text), "%06x", rgb_of(kDefaults.background));
+    std::snprintf(text, sizeof(text), "%06x", rgb_of(defaults().background));
     return text;
 }
 
@@ -50,13 +55,13 @@ std::string view_usage() {
            "1000])\n"
            "  --time T0               start time in seconds (default 0, |T0| <= 1e6); clips loop\n"
            "  --size WxH              image size (default " +
-           std::to_string(kDefaults.width) + "x" + std::to_string(kDefaults.height) + ", " +
+           std::to_string(defaults().width) + "x" + std::to_string(defaults().height) + ", " +
            std::to_string(kLimits.width.min) + " <= W, H <= " + std::to_string(kLimits.width.max) +
            ")\n"
            "  --zoom Z                1 = every pose of the played clip(s) fits the view (no "
            "clip:\n"
            "                          the rest pose), 2 = twice as large (default " +
-           g(kDefaults.zoom) + ", " + range(kLimits.zoom) +
+           g(defaults().zoom) + ", " + range(kLimits.zoom) +
            ")\n"
            "  --zoom-to Z2            zoom from Z to Z2 (geometrically) over the frames (default: "
            "no\n"
@@ -67,7 +72,7 @@ std::string view_usage() {
            "again\n"
            "                          (default: once, Z -> Z2 over all frames)\n"
            "  --yaw DEG, --pitch DEG  camera orbit (default " +
-           g(kDefaults.yaw_degrees) + ", " + g(kDefaults.pitch_degrees) +
+           g(defaults().yaw_degrees) + ", " + g(defaults().pitch_degrees) +
            ": looking down -Z);\n                          yaw " + range(kLimits.yaw_degrees) +
            ", pitch " + range(kLimits.pitch_degrees) + "\n";
 }
@@ -78,7 +83,7 @@ std::string render_usage() {
            " instead of lighting (default:\n"
            "                          lighting)\n"
            "  --point-size PX         maximum stipple diameter (default " +
-           g(kDefaults.max_point_size) + ", " + range(kLimits.max_point_size) +
+           g(defaults().max_point_size) + ", " + range(kLimits.max_point_size) +
            ")\n"
            "  --background RRGGBB     background colour (default " +
            background_default() +
@@ -86,16 +91,16 @@ std::string render_usage() {
            "  --no-relevance-update   keep rest-pose relevance radii (thesis Alg. 6.3 without "
            "6.4)\n"
            "  --dark-tone T           darkest tone lighting asks for, thesis §8.4 (default " +
-           g(kDefaults.dark_tone) + ", " + range(kLimits.dark_tone) +
+           g(defaults().dark_tone) + ", " + range(kLimits.dark_tone) +
            ")\n"
            "  --refinement-budget N   extra points per frame where the baked hierarchy runs out\n"
            "                          (close-ups, stretch; default " +
-           std::to_string(kDefaults.refinement_budget) + ", 0 = off, max " +
+           std::to_string(defaults().refinement_budget) + ", 0 = off, max " +
            std::to_string(kLimits.refinement_budget.max) +
            ")\n"
            "  --no-silhouettes        do not draw silhouette lines\n"
            "  --line-width PX         silhouette line width (default " +
-           g(kDefaults.line_width) + ", " + range(kLimits.line_width) +
+           g(defaults().line_width) + ", " + range(kLimits.line_width) +
            ")\n"
            "  --light X,Y,Z[,I]       a directional light toward X,Y,Z with intensity I (default "
            "1,\n"
@@ -113,7 +118,7 @@ std::string render_usage() {
            "                          default auto: by projected radius)\n"
            "  --stroke-tolerance T[,Z]  lengthwise tolerances in pixels: tol_theta (Position\n"
            "                          Constraint I) and tol_z (II and radius; default " +
-           g(kDefaults.stroke_tol_theta) + "," + g(kDefaults.stroke_tol_z) + ", each " +
+           g(defaults().stroke_tol_theta) + "," + g(defaults().stroke_tol_z) + ", each " +
            range(kLimits.stroke_tol_theta) +
            ")\n"
            "  --stroke-lod PX         draw a stroke only where its root point's relevance radius\n"
@@ -121,7 +126,7 @@ std::string render_usage() {
            range(kLimits.stroke_lod_px) +
            ")\n"
            "  --stroke-budget N       tessellated stroke vertices per frame (default " +
-           std::to_string(kDefaults.stroke_vertex_budget) + ", " +
+           std::to_string(defaults().stroke_vertex_budget) + ", " +
            std::to_string(kLimits.stroke_vertex_budget.min) + ".." +
            std::to_string(kLimits.stroke_vertex_budget.max) +
            "; 48 bytes each);\n"
