@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cassert>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -11,6 +10,7 @@
 
 #include "runtime/camera.h"
 #include "runtime/double_sided.h"
+#include "runtime/frame_pose.h"
 #include "runtime/point_placement.h"
 #include "runtime/silhouette.h"
 #include "runtime/stroke_anchor.h"
@@ -19,128 +19,7 @@ namespace stipple {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point* t) {
-    Clock::time_point now = Clock::now();
-    double ms = std::chrono::duration<double, std::milli>(now - *t).count();
-    *t = now;
-    return ms;
-}
-
-// The jobs of a frame run on spans pipeline_init sized from the asset's counts, and the asset
-// passed load validation, so a job that fails its own validation is a bug in the pipeline,
-// not bad input. Debug builds stop on it; release builds skip that stage (its output keeps
-// the previous frame's values) instead of failing a frame that has no way to report it.
-void expect_ran(bool ran) {
-    assert(ran && "a frame stage's job failed validation");
-    (void)ran;
-}
-
-// Samples clip `clip` at `time` into pose slot `slot` (locals and morph weights), with that
-// slot's sampling context so forward playback only touches the keys it needs.
-void sample_pose(Pipeline* p, int slot, int clip, float time) {
-    const Asset& a = *p->asset;
-    const anim::Skeleton& k = a.skin.skeleton;
-    const uint32_t slots = a.morph.weight_count;
-    anim::Span<float> weights(p->morph_weights[slot].get(), slots);
-    anim::Span<const float> defaults(a.morph.default_weights, a.morph.default_weights ? slots : 0);
-    if (clip < 0 || uint32_t(clip) >= a.clip_count) {
-        std::copy(k.rest, k.rest + k.node_count, p->locals[slot].get());
-        for (uint32_t i = 0; i < slots; ++i) weights[i] = defaults.size ? defaults[i] : 0.0f;
-        return;
-    }
-    anim::SamplingJob job;
-    job.skeleton = &k;
-    job.clip = &a.clips[clip];
-    job.time = time;
-    job.wrap = anim::Wrap::loop;
-    job.context = &p->contexts[slot];
-    job.locals = anim::Span<anim::Trs>(p->locals[slot].get(), k.node_count);
-    job.morph_weights = weights;
-    job.default_morph_weights = defaults;
-    expect_ran(job.run());
-}
-
-// Samples (and blends) the pose, then morphs and skins the mesh into
-// p->vertex_positions/normals; static meshes are copied.
-void pose_mesh(Pipeline* p, const AnimationState& state, StageTimes* t, Clock::time_point* clock) {
-    const Asset& a = *p->asset;
-    const MeshView& m = a.mesh;
-    if (!a.skinned) {
-        std::memcpy(p->vertex_positions.get(), m.positions, size_t(m.vertex_count) * 12);
-        std::memcpy(p->vertex_normals.get(), m.normals, size_t(m.vertex_count) * 12);
-        if (t) t->skin += ms_since(clock);
-        return;
-    }
-    const anim::Skeleton& k = a.skin.skeleton;
-    const uint32_t slots = a.morph.weight_count;
-    sample_pose(p, 0, state.clip, state.time);
-    int pose = 0;
-    if (state.blend_clip >= 0 && state.blend_weight > 0.0f) {
-        // ozz-style weighted layering of the two sampled poses (nlerp of rotations).
-        sample_pose(p, 1, state.blend_clip, state.blend_time);
-        const float w = std::min(state.blend_weight, 1.0f);
-        const anim::BlendLayer layers[2] = {
-            {{p->locals[0].get(), k.node_count}, 1.0f - w, {}, {p->morph_weights[0].get(), slots}},
-            {{p->locals[1].get(), k.node_count}, w, {}, {p->morph_weights[1].get(), slots}}};
-        anim::BlendingJob blend;
-        blend.skeleton = &k;
-        blend.layers = layers;
-        blend.out = anim::Span<anim::Trs>(p->locals[2].get(), k.node_count);
-        blend.out_morph_weights = anim::Span<float>(p->morph_weights[2].get(), slots);
-        if (blend.run()) pose = 2;
-    }
-    anim::LocalToModelJob hierarchy;
-    hierarchy.skeleton = &k;
-    hierarchy.locals = {p->locals[pose].get(), k.node_count};
-    hierarchy.models = {p->models.get(), k.node_count};
-    expect_ran(hierarchy.run());
-    anim::JointMatrixJob joints;
-    joints.skeleton = &k;
-    joints.models = {p->models.get(), k.node_count};
-    joints.joint_matrices = {p->skin_matrices.get(), k.joint_count};
-    expect_ran(joints.run());
-    anim::SkinningJob skin;
-    skin.method = p->config.skinning;
-    if (skin.method == anim::Skinning::dqs) {
-        uint32_t stretched = 0;
-        expect_ran(anim::dqs_joints({p->skin_matrices.get(), k.joint_count},
-                                    {p->dq_joints.get(), k.joint_count}, &stretched));
-        skin.dq_joints = {p->dq_joints.get(), k.joint_count};
-        skin.dq_rigid = stretched == 0;
-    }
-    if (t) t->sample += ms_since(clock);
-
-    const size_t floats = size_t(m.vertex_count) * 3;
-    anim::Span<const float> in_positions(m.positions, floats), in_normals(m.normals, floats);
-    anim::Span<float> out_positions(p->vertex_positions.get(), floats);
-    anim::Span<float> out_normals(p->vertex_normals.get(), floats);
-    if (a.has_morph()) {  // morph targets apply in bind space, before skinning
-        anim::MorphJob morph;
-        morph.morph = &a.morph;
-        morph.vertex_count = m.vertex_count;
-        morph.weights = {p->morph_weights[pose].get(), slots};
-        morph.in_positions = in_positions;
-        morph.in_normals = in_normals;
-        morph.out_positions = out_positions;
-        morph.out_normals = out_normals;
-        if (morph.run()) {
-            in_positions = out_positions;
-            in_normals = out_normals;
-        }
-    }
-    skin.vertex_count = m.vertex_count;
-    skin.joint_matrices = {p->skin_matrices.get(), k.joint_count};
-    skin.joints = {a.skin.joints, size_t(m.vertex_count) * 4};
-    skin.weights = {a.skin.weights, size_t(m.vertex_count) * 4};
-    skin.in_positions = in_positions;
-    skin.in_normals = in_normals;
-    skin.out_positions = out_positions;
-    skin.out_normals = out_normals;
-    expect_ran(skin.run());
-    if (t) t->skin += ms_since(clock);
-}
+using Clock = StageClock;
 
 // Orbit camera around what is framed (runtime/camera.h), in the pipeline's image.
 void setup_camera(Pipeline* p) {
@@ -496,13 +375,6 @@ void pipeline_set_camera(Pipeline* p, const glm::mat4& view, const glm::mat4& pr
     r.config.line_width = c.line_width;
 }
 
-uint64_t pipeline_point_id(const Pipeline& p, uint32_t i) {
-    const uint32_t baked = p.asset->points.point_count;
-    if (i < baked) return i;
-    const uint32_t j = i - baked;
-    return (uint64_t(p.refined_triangle[j]) + 1) << 32 | p.refined_index[j];
-}
-
 Status pipeline_set_view(Pipeline* p, const FrameConfig& in) {
     FrameConfig view;
     Status st = resolve_frame_config(in, &view);
@@ -533,62 +405,6 @@ Status pipeline_set_view(Pipeline* p, const FrameConfig& in) {
     stroke_stage_configure(&p->strokes, c);
     setup_camera(p);
     return {};
-}
-
-namespace {
-
-// Clip space to pixels (origin top-left) and window depth.
-glm::vec3 to_pixels(const Pipeline& p, const glm::vec4& clip) {
-    const glm::vec3 ndc = glm::vec3(clip) / clip.w;
-    return glm::vec3((ndc.x * 0.5f + 0.5f) * float(p.config.width),
-                     (0.5f - ndc.y * 0.5f) * float(p.config.height), ndc.z * 0.5f + 0.5f);
-}
-
-}  // namespace
-
-glm::vec3 pipeline_project(const Pipeline& p, uint32_t i) {
-    return to_pixels(
-        p, p.view_projection * glm::vec4(p.point_positions[i * 3], p.point_positions[i * 3 + 1],
-                                         p.point_positions[i * 3 + 2], 1.0f));
-}
-
-uint32_t pipeline_stroke_roots(const Pipeline& p, StrokeRootSample* out, uint32_t capacity) {
-    if (!p.strokes.enabled) return 0;
-    const Asset& a = *p.asset;
-    const StrokesView& v = a.strokes;
-    const glm::mat4* joints = a.skinned ? p.skin_matrices.get() : nullptr;
-    uint32_t n = 0;
-    for (uint32_t i = 0; i < v.stroke_count && n < capacity; ++i) {
-        const format::StrokeRecord& r = v.strokes[i];
-        const glm::vec3 drawn =
-            to_pixels(p, p.projection * glm::vec4(p.strokes.points[r.first_point].position, 1.0f));
-        const glm::vec3 surface =
-            r.root_point != format::kNoRootPoint
-                ? pipeline_project(p, r.root_point)
-                : to_pixels(p, p.view_projection *
-                                   glm::vec4(stroke_root(v, i, a.mesh, p.vertex_positions.get(),
-                                                         p.vertex_normals.get(), joints),
-                                             1.0f));
-        out[n++] = StrokeRootSample{i, drawn.x, drawn.y, surface.x, surface.y};
-    }
-    return n;
-}
-
-uint32_t pipeline_visible_dots(const Pipeline& p, const float* depth, VisibleDot* out,
-                               uint32_t capacity) {
-    const int w = p.config.width, h = p.config.height;
-    const uint32_t count = pipeline_point_count(p);
-    uint32_t n = 0;
-    for (uint32_t i = 0; i < count && n < capacity; ++i) {
-        if (p.size[i] <= 0.0f) continue;
-        const glm::vec3 s = pipeline_project(p, i);
-        const int px = int(std::floor(s.x)), py = int(std::floor(s.y));
-        if (px < 0 || py < 0 || px >= w || py >= h) continue;
-        const float mesh_depth = depth[size_t(h - 1 - py) * size_t(w) + size_t(px)];
-        if (mesh_depth >= 1.0f || s.z > mesh_depth + 1e-5f) continue;  // off the object or hidden
-        out[n++] = VisibleDot{pipeline_point_id(p, i), s.x, s.y, p.size[i]};
-    }
-    return n;
 }
 
 void pipeline_destroy(Pipeline* p) {

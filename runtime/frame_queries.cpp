@@ -1,0 +1,73 @@
+// What a caller can ask of the last frame: point ids, projections, visible dots, stroke roots
+// (runtime/frame_pipeline.h declares them).
+#include <cmath>
+
+#include "runtime/frame_pipeline.h"
+#include "runtime/stroke_anchor.h"
+
+namespace stipple {
+
+uint64_t pipeline_point_id(const Pipeline& p, uint32_t i) {
+    const uint32_t baked = p.asset->points.point_count;
+    if (i < baked) return i;
+    const uint32_t j = i - baked;
+    return (uint64_t(p.refined_triangle[j]) + 1) << 32 | p.refined_index[j];
+}
+
+namespace {
+
+// Clip space to pixels (origin top-left) and window depth.
+glm::vec3 to_pixels(const Pipeline& p, const glm::vec4& clip) {
+    const glm::vec3 ndc = glm::vec3(clip) / clip.w;
+    return glm::vec3((ndc.x * 0.5f + 0.5f) * float(p.config.width),
+                     (0.5f - ndc.y * 0.5f) * float(p.config.height), ndc.z * 0.5f + 0.5f);
+}
+
+}  // namespace
+
+glm::vec3 pipeline_project(const Pipeline& p, uint32_t i) {
+    return to_pixels(
+        p, p.view_projection * glm::vec4(p.point_positions[i * 3], p.point_positions[i * 3 + 1],
+                                         p.point_positions[i * 3 + 2], 1.0f));
+}
+
+uint32_t pipeline_stroke_roots(const Pipeline& p, StrokeRootSample* out, uint32_t capacity) {
+    if (!p.strokes.enabled) return 0;
+    const Asset& a = *p.asset;
+    const StrokesView& v = a.strokes;
+    const glm::mat4* joints = a.skinned ? p.skin_matrices.get() : nullptr;
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < v.stroke_count && n < capacity; ++i) {
+        const format::StrokeRecord& r = v.strokes[i];
+        const glm::vec3 drawn =
+            to_pixels(p, p.projection * glm::vec4(p.strokes.points[r.first_point].position, 1.0f));
+        const glm::vec3 surface =
+            r.root_point != format::kNoRootPoint
+                ? pipeline_project(p, r.root_point)
+                : to_pixels(p, p.view_projection *
+                                   glm::vec4(stroke_root(v, i, a.mesh, p.vertex_positions.get(),
+                                                         p.vertex_normals.get(), joints),
+                                             1.0f));
+        out[n++] = StrokeRootSample{i, drawn.x, drawn.y, surface.x, surface.y};
+    }
+    return n;
+}
+
+uint32_t pipeline_visible_dots(const Pipeline& p, const float* depth, VisibleDot* out,
+                               uint32_t capacity) {
+    const int w = p.config.width, h = p.config.height;
+    const uint32_t count = pipeline_point_count(p);
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < count && n < capacity; ++i) {
+        if (p.size[i] <= 0.0f) continue;
+        const glm::vec3 s = pipeline_project(p, i);
+        const int px = int(std::floor(s.x)), py = int(std::floor(s.y));
+        if (px < 0 || py < 0 || px >= w || py >= h) continue;
+        const float mesh_depth = depth[size_t(h - 1 - py) * size_t(w) + size_t(px)];
+        if (mesh_depth >= 1.0f || s.z > mesh_depth + 1e-5f) continue;  // off the object or hidden
+        out[n++] = VisibleDot{pipeline_point_id(p, i), s.x, s.y, p.size[i]};
+    }
+    return n;
+}
+
+}  // namespace stipple
