@@ -74,6 +74,24 @@ struct StrokesView {
     uint32_t max_points_per_stroke = 0;  // the longest stroke's control points
 };
 
+// Looks (LOOK section, optional; written by the bake, read by the styles of
+// runtime/frame_config.h): the surface's appearance from its materials (thesis ch. 7-8).
+// Every pointer is null and every count 0 when the asset has no LOOK section.
+struct LooksView {
+    // 4 per baked point, RGBA8 (linear): the material's base colour at the point (factor
+    // times the base colour texture sampled at the point's barycentric position); nullptr: none.
+    const uint8_t* point_colour = nullptr;
+    uint32_t part_count = 0;                  // parts (glTF primitives/materials), 0: one part
+    const uint16_t* triangle_part = nullptr;  // per MESH triangle, < part_count, or nullptr
+    const uint8_t* part_flags = nullptr;      // part_count entries, kPart* bits
+    const uint8_t* part_colour = nullptr;     // 4 per part, RGBA8: base colour factor
+    // Crease edges (thesis §7.1: faces meeting at more than the bake's crease angle), laid out
+    // like EdgesView::edges: vertex a, vertex b, face 0, face 1 (or format::kNoFace).
+    uint32_t crease_count = 0;
+    const uint32_t* creases = nullptr;
+};
+enum : uint8_t { kPartTransparent = 1 };  // thesis §7.4: no fill, only dots and lines
+
 struct SkinView {
     anim::Skeleton skeleton = {};
     const uint16_t* joints = nullptr;  // 4 per vertex, each < joint_count
@@ -108,6 +126,7 @@ struct Asset {
     SidesView sides;         // empty if no triangle is double-sided
     BoundsView bounds;       // present = false for version-2 assets
     StrokesView strokes;     // empty if the asset has no STRK section
+    LooksView looks;         // empty if the asset has no LOOK section
     uint16_t version = 0;
     size_t section_size[kSectionCount] = {};  // bytes per section, kSection* order (0: absent)
 
