@@ -217,10 +217,27 @@ std::vector<uint8_t> strokes_section(const BakedStrokes& s) {
     return b.v;
 }
 
+// LOOK section: header, creases, point colours, part colours, triangle parts, part flags
+// (runtime/asset_format.h LooksHeader; the order aligns every array without padding).
+std::vector<uint8_t> looks_section(const BakedLooks& l) {
+    const format::LooksHeader h = {uint32_t(l.point_colour.size() / 4),
+                                   uint32_t(l.part_flags.size()),
+                                   uint32_t(l.part_flags.empty() ? 0 : l.triangle_part.size()),
+                                   uint32_t(l.creases.size() / 4), 0};
+    Bytes b;
+    b.put(&h, 1);
+    b.put(l.creases);
+    b.put(l.point_colour);
+    b.put(l.part_colour);
+    if (!l.part_flags.empty()) b.put(l.triangle_part);
+    b.put(l.part_flags);
+    return b.v;
+}
+
 }  // namespace
 
 std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points,
-                                  const BakedStrokes& strokes) {
+                                  const BakedStrokes& strokes, const BakedLooks& looks) {
     struct Section {
         uint32_t tag;
         std::vector<uint8_t> bytes;
@@ -241,6 +258,7 @@ std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& p
         scene.double_sided.end())
         sections.push_back({format::kTagSides, sides_section(scene)});
     if (!strokes.empty()) sections.push_back({format::kTagStrokes, strokes_section(strokes)});
+    if (!looks.empty()) sections.push_back({format::kTagLooks, looks_section(looks)});
 
     std::vector<format::SectionEntry> table(sections.size());
     uint64_t offset = sizeof(format::FileHeader) + table.size() * sizeof(format::SectionEntry);

@@ -8,14 +8,16 @@
 #include "bake/point_hierarchy.h"
 #include "bake/raw_scene.h"
 #include "bake/stroke_data.h"
+#include "bake/surface_looks.h"
 
 namespace stipple::bake {
 
 // Builds the whole file in memory (byte-identical for identical inputs). A STRK section is
-// written only when `strokes` holds any: an asset without strokes is the same bytes as before
-// strokes existed.
+// written only when `strokes` holds any, a LOOK section only when `looks` says anything: an
+// asset without either is the same bytes as before those sections existed.
 std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points,
-                                  const BakedStrokes& strokes = BakedStrokes());
+                                  const BakedStrokes& strokes = BakedStrokes(),
+                                  const BakedLooks& looks = BakedLooks());
 
 // Writes to `path` through a uniquely named temporary file, fsync and a rename
 // (bake/atomic_file.h), so a failed bake never leaves a partial asset or a temp file behind.

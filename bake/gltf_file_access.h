@@ -32,6 +32,14 @@ constexpr uint64_t kMaxGltfExternalTotalBytes = uint64_t(2) << 30;
 // about 2 GB and half a minute; bigger buffers belong in a .bin file.
 constexpr uint64_t kMaxGltfDataUriBytes = uint64_t(256) << 20;
 
+// Base colour textures (stipple-bake --looks; bake/gltf_materials.cpp): an image is decoded
+// only if each side is at most kMaxTextureSide pixels and all decoded images together stay
+// within kMaxTextureBytes (RGBA8); stb_image's header is read first, so a small file
+// claiming a huge image allocates nothing. A larger image is skipped with a warning. The
+// import copies each used texture out of tinygltf's model, so the peak is at most twice this.
+constexpr uint64_t kMaxTextureSide = 16384;
+constexpr uint64_t kMaxTextureBytes = uint64_t(1) << 30;
+
 class FileAccess {
   public:
     // `model_path` is the .gltf/.glb file; its folder is the only one URIs may name.

@@ -47,7 +47,7 @@ std::string first_line(const std::string& text) {
     return std::string();
 }
 
-// Images are irrelevant to the bake: accept them without decoding.
+// Without looks, images are irrelevant to the bake: accept them without decoding.
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int,
                 const unsigned char*, int, void*) {
     return true;
@@ -67,7 +67,8 @@ std::pair<const unsigned char*, size_t> json_text(const std::vector<unsigned cha
 
 // Reads the model file itself (a regular file under kMaxModelFileBytes), then lets
 // tinygltf parse it with file callbacks that confine buffer URIs to its folder.
-BakeError load_model(const std::string& path, Model* model, std::vector<std::string>* warnings) {
+BakeError load_model(const std::string& path, bool looks, Model* model,
+                     std::vector<std::string>* warnings) {
     std::vector<unsigned char> file;
     const BakeError read = read_input_file(path, kMaxModelFileBytes, &file);
     if (!read.ok()) return read;
@@ -79,7 +80,13 @@ BakeError load_model(const std::string& path, Model* model, std::vector<std::str
     if (!uris.ok()) return uris;
     gltf::FileAccess access(path);
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(&skip_image, nullptr);
+    gltf::ImageDecoding decoding;
+    decoding.decode = looks;
+    decoding.warnings = warnings;
+    if (looks)
+        loader.SetImageLoader(&gltf::load_image, &decoding);
+    else
+        loader.SetImageLoader(&skip_image, nullptr);
     loader.SetFsCallbacks(access.callbacks());
     std::string terr;
     std::string twarn;
@@ -142,6 +149,14 @@ void finish_scene(bool animated, gltf::SkinTable* skin, gltf::MorphWeightTable* 
     if (std::find(scene->double_sided.begin(), scene->double_sided.end(), 1) ==
         scene->double_sided.end())
         scene->double_sided.clear();
+    // Texture coordinates only matter where a part samples a texture, colours where one is
+    // not white.
+    if (std::none_of(scene->parts.begin(), scene->parts.end(),
+                     [](const RawPart& p) { return p.texture >= 0; }))
+        scene->uvs.clear();
+    if (std::all_of(scene->colours.begin(), scene->colours.end(),
+                    [](float c) { return c == 1.0f; }))
+        scene->colours.clear();
     if (!animated) return;
     scene->joint_nodes = std::move(skin->joint_nodes);
     scene->inverse_bind = std::move(skin->inverse_bind);
@@ -161,7 +176,7 @@ void finish_scene(bool animated, gltf::SkinTable* skin, gltf::MorphWeightTable* 
 }
 
 // The import proper, part by part: nodes, skin, morph weight slots, clips, meshes.
-BakeError import_model(const Model& model, RawScene* scene) {
+BakeError import_model(const Model& model, const ImportOptions& options, RawScene* scene) {
     BakeError error = check_extensions(model, &scene->warnings);
     gltf::NodeTable nodes;
     if (error.ok()) error = gltf::read_nodes(model, scene, &nodes);
@@ -171,7 +186,7 @@ BakeError import_model(const Model& model, RawScene* scene) {
     gltf::MorphWeightTable morph = gltf::assign_morph_slots(model, nodes, &scene->warnings);
     std::vector<RawClip> clips = gltf::read_clips(model, nodes, morph.slots, &scene->warnings);
     const bool animated = skin.present || !clips.empty();
-    error = gltf::merge_meshes(model, nodes, morph, animated, &skin, scene);
+    error = gltf::merge_meshes(model, nodes, morph, animated, options, &skin, scene);
     if (!error.ok()) return error;
     if (scene->indices.empty()) return malformed_input("no triangle primitives found");
     finish_scene(animated, &skin, &morph, &clips, scene);
@@ -180,14 +195,14 @@ BakeError import_model(const Model& model, RawScene* scene) {
 
 }  // namespace
 
-BakeError import_gltf(const std::string& path, RawScene* out) {
+BakeError import_gltf(const std::string& path, RawScene* out, const ImportOptions& options) {
     assert(out != nullptr);
     RawScene scene;
     BakeError error;
     try {
         Model model;
-        error = load_model(path, &model, &scene.warnings);
-        if (error.ok()) error = import_model(model, &scene);
+        error = load_model(path, options.looks, &model, &scene.warnings);
+        if (error.ok()) error = import_model(model, options, &scene);
     } catch (const std::bad_alloc&) {
         error = bake_error(BakeErrorCode::out_of_memory, "out of memory");
     } catch (const std::exception& e) {

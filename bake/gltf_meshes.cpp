@@ -184,7 +184,30 @@ struct MergeState {
     SkinTable* skin;
     MeshContext ctx;
     std::vector<int64_t> rigid_joint;  // joint of a rigidly attached output node, or -1
+    const ImportOptions& options;
+    PartTable parts;
 };
+
+// The primitive's part per triangle and, with looks, its texture coordinates and colours per
+// vertex ((0, 0) where it samples no texture, white where it has no COLOR_0).
+BakeError append_looks(MergeState& st, size_t mesh_index, size_t p, const Primitive& prim,
+                       RawScene* scene) {
+    uint16_t part = 0;
+    const BakeError error =
+        primitive_part(st.model, mesh_index, p, st.options, &st.parts, scene, &part);
+    if (!error.ok()) return error;
+    scene->triangle_part.insert(scene->triangle_part.end(), prim.indices.size() / 3, part);
+    if (!st.options.looks) return BakeError();
+    if (prim.uvs.empty())
+        scene->uvs.insert(scene->uvs.end(), prim.positions.size() / 3 * 2, 0.0f);
+    else
+        scene->uvs.insert(scene->uvs.end(), prim.uvs.begin(), prim.uvs.end());
+    if (prim.colours.empty())
+        scene->colours.insert(scene->colours.end(), prim.positions.size() / 3 * 4, 1.0f);
+    else
+        scene->colours.insert(scene->colours.end(), prim.colours.begin(), prim.colours.end());
+    return BakeError();
+}
 
 // Reads and appends the primitives of output node `oi`'s mesh.
 BakeError merge_node_mesh(MergeState& st, size_t oi, RawScene* scene) {
@@ -217,6 +240,8 @@ BakeError merge_node_mesh(MergeState& st, size_t oi, RawScene* scene) {
             std::numeric_limits<uint32_t>::max() - scene->vertex_count()) {
             return bake_error(BakeErrorCode::unsupported, "more than 2^32 vertices");
         }
+        error = append_looks(st, mesh_index, p, prim, scene);
+        if (!error.ok()) return error;
         const MorphSlots& slots = st.morph.slots[oi];
         if (!st.animated) {
             apply_default_weights(slots, st.morph.weights, &prim);
@@ -251,16 +276,20 @@ MorphWeightTable assign_morph_slots(const Model& model, const NodeTable& nodes,
 }
 
 BakeError merge_meshes(const Model& model, const NodeTable& nodes, const MorphWeightTable& morph,
-                       bool animated, SkinTable* skin, RawScene* scene) {
+                       bool animated, const ImportOptions& options, SkinTable* skin,
+                       RawScene* scene) {
     const bool quantized = std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(),
                                      "KHR_mesh_quantization") != model.extensionsUsed.end();
-    MergeState st{model,
-                  nodes,
-                  morph,
-                  animated,
-                  skin,
-                  MeshContext{model, quantized, skin->joint_nodes.size(), &scene->warnings},
-                  std::vector<int64_t>(nodes.order.size(), -1)};
+    MergeState st{
+        model,
+        nodes,
+        morph,
+        animated,
+        skin,
+        MeshContext{model, quantized, skin->joint_nodes.size(), &scene->warnings, &options},
+        std::vector<int64_t>(nodes.order.size(), -1),
+        options,
+        PartTable()};
     for (size_t oi = 0; oi < nodes.order.size(); ++oi) {
         if (model.nodes[nodes.order[oi]].mesh < 0) continue;
         const BakeError error = merge_node_mesh(st, oi, scene);

@@ -11,6 +11,7 @@
 #pragma once
 #include <tiny_gltf.h>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -20,6 +21,7 @@
 #include "bake/bake_error.h"
 #include "bake/gltf_accessors.h"
 #include "bake/raw_scene.h"
+#include "bake/scene_import.h"
 #include "runtime/asset_limits.h"
 
 namespace stipple::bake::gltf {
@@ -79,6 +81,11 @@ struct Primitive {
     // when the target has none or the primitive's normals were not given).
     std::vector<std::vector<float>> target_positions;
     std::vector<std::vector<float>> target_normals;
+    // TEXCOORD_n of the material's base colour texture (2 per vertex), when it has one and
+    // the import wants looks; else empty.
+    std::vector<float> uvs;
+    // COLOR_0 (§3.7.2.1), 4 per vertex (alpha 1 for VEC3), when the import wants looks.
+    std::vector<float> colours;
 };
 
 struct MeshContext {
@@ -86,6 +93,7 @@ struct MeshContext {
     bool quantized;           // KHR_mesh_quantization is used: integer positions/normals
     size_t skin_joint_count;  // joints of skin 0
     std::vector<std::string>* warnings;
+    const ImportOptions* options = nullptr;  // looks: texture coordinates wanted
 };
 
 // Reads one primitive (skin attributes too when `want_skin`). *skipped is set (with a
@@ -125,9 +133,42 @@ MorphWeightTable assign_morph_slots(const Model& model, const NodeTable& nodes,
 // Reads the primitives of every mesh node, in output node order, and appends them to
 // `scene` (static: world-baked; animated: skinned or rigidly attached, with morph targets).
 // Rigid attachments append joints to skin->joint_nodes / skin->inverse_bind.
+// Every primitive's part (gltf_materials.cpp) goes to scene->triangle_part, and with
+// options.looks its texture coordinates to scene->uvs.
 [[nodiscard]] BakeError merge_meshes(const Model& model, const NodeTable& nodes,
-                                     const MorphWeightTable& morph, bool animated, SkinTable* skin,
+                                     const MorphWeightTable& morph, bool animated,
+                                     const ImportOptions& options, SkinTable* skin,
                                      RawScene* scene);
+
+// ---------------------------------------------------------------------------------------
+// Materials (gltf_materials.cpp): parts, base colours, textures (§3.9, §3.8)
+
+// Parts made so far, by (material, mesh named in --transparent or -1, -1) for a primitive
+// with a material and (-1, mesh, primitive) for one without, and textures by glTF texture.
+struct PartTable {
+    std::vector<std::array<int, 3>> keys;  // key of each part of RawScene::parts
+    std::vector<int> texture_of;           // scene texture of each glTF texture, -1: none yet
+};
+
+// The TEXCOORD set the primitive's material samples its base colour texture with, or -1.
+int base_colour_texcoord(const Model& model, const tinygltf::Primitive& prim);
+
+// The part of primitive `prim_index` of mesh `mesh_index`, made (with its material's colour,
+// alpha mode and decoded texture) the first time. Errors: unsupported (over kMaxParts parts).
+[[nodiscard]] BakeError primitive_part(const Model& model, size_t mesh_index, size_t prim_index,
+                                       const ImportOptions& options, PartTable* table,
+                                       RawScene* scene, uint16_t* part);
+
+// The image loader passed to tinygltf (§3.8): decodes PNG/JPEG to RGBA8 with stb_image when
+// `decode` is set, within kMaxTextureSide and kMaxTextureBytes (bake/gltf_file_access.h); an
+// image it cannot or may not decode is left empty with a warning (its parts get no texture).
+struct ImageDecoding {
+    bool decode = false;
+    uint64_t bytes = 0;  // decoded so far
+    std::vector<std::string>* warnings = nullptr;
+};
+bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string* warn,
+                int req_width, int req_height, const unsigned char* bytes, int size, void* user);
 
 // ---------------------------------------------------------------------------------------
 // Animations (gltf_animations.cpp)

@@ -207,6 +207,63 @@ BakeError read_morph_targets(const MeshContext& ctx, const tinygltf::Primitive& 
     return BakeError();
 }
 
+// The base colour texture's TEXCOORD_n (§3.7.2.1: VEC2 float, or normalized unsigned byte or
+// short) for the vertices `used`. A missing or unusable set gives (0, 0) with a warning.
+BakeError read_texcoords(const MeshContext& ctx, const tinygltf::Primitive& prim,
+                         const std::string& label, size_t vertex_count,
+                         const std::vector<uint32_t>& used, Primitive* out) {
+    const int set = base_colour_texcoord(ctx.model, prim);
+    if (set < 0) return BakeError();
+    out->uvs.assign(used.size() * 2, 0.0f);
+    const std::string name = "TEXCOORD_" + str(set);
+    const auto it = prim.attributes.find(name);
+    std::vector<float> uvs;
+    if (it != prim.attributes.end()) {
+        const BakeError read =
+            read_accessor(ctx.model, it->second, TINYGLTF_TYPE_VEC2, kF32 | kU8N | kU16N, &uvs);
+        if (!read.ok()) return prefixed(label + " " + name + ": ", read);
+    }
+    if (uvs.size() != vertex_count * 2) {
+        ctx.warnings->push_back(label + ": " + name +
+                                (uvs.empty() ? " missing" : " count differs") +
+                                "; its base colour texture is sampled at (0, 0)");
+        return BakeError();
+    }
+    for (size_t v = 0; v < used.size(); ++v)
+        for (size_t c = 0; c < 2; ++c) {
+            const float x = uvs[size_t(used[v]) * 2 + c];
+            out->uvs[v * 2 + c] = std::isfinite(x) ? x : 0.0f;
+        }
+    return BakeError();
+}
+
+// COLOR_0 (§3.7.2.1: VEC3 or VEC4, float or normalized unsigned byte or short; linear) for
+// the vertices `used`, RGBA with alpha 1 for VEC3, clamped to [0, 1].
+BakeError read_colours(const MeshContext& ctx, const tinygltf::Primitive& prim,
+                       const std::string& label, size_t vertex_count,
+                       const std::vector<uint32_t>& used, Primitive* out) {
+    const auto it = prim.attributes.find("COLOR_0");
+    if (it == prim.attributes.end()) return BakeError();
+    const bool vec4 = it->second >= 0 && size_t(it->second) < ctx.model.accessors.size() &&
+                      ctx.model.accessors[size_t(it->second)].type == TINYGLTF_TYPE_VEC4;
+    const size_t width = vec4 ? 4 : 3;
+    std::vector<float> colours;
+    const BakeError read =
+        read_accessor(ctx.model, it->second, vec4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3,
+                      kF32 | kU8N | kU16N, &colours);
+    if (!read.ok()) return prefixed(label + " COLOR_0: ", read);
+    if (colours.size() != vertex_count * width)
+        return malformed_input(label + ": COLOR_0 count " + str(colours.size() / width) +
+                               " differs from POSITION count " + str(vertex_count));
+    out->colours.assign(used.size() * 4, 1.0f);
+    for (size_t v = 0; v < used.size(); ++v)
+        for (size_t c = 0; c < width; ++c) {
+            const float x = colours[size_t(used[v]) * width + c];
+            out->colours[v * 4 + c] = std::isfinite(x) ? std::clamp(x, 0.0f, 1.0f) : 1.0f;
+        }
+    return BakeError();
+}
+
 // §3.7.2.1: mode defaults to TRIANGLES (4); point and line modes are legal but skipped.
 BakeError check_mode(const MeshContext& ctx, const tinygltf::Primitive& prim,
                      const std::string& label, int* mode, bool* skipped) {
@@ -259,6 +316,10 @@ BakeError read_primitive(const MeshContext& ctx, size_t mesh_index, size_t prim_
     }
     error = read_morph_targets(ctx, prim, label, attributes.vertex_count, used,
                                !attributes.normals.empty(), out);
+    if (error.ok() && ctx.options && ctx.options->looks)
+        error = read_texcoords(ctx, prim, label, attributes.vertex_count, used, out);
+    if (error.ok() && ctx.options && ctx.options->looks)
+        error = read_colours(ctx, prim, label, attributes.vertex_count, used, out);
     if (!error.ok()) return error;
     if (out->skinned) sort_by_influence_count(out);
     return BakeError();

@@ -248,6 +248,8 @@ void sort_by_influence_count(Primitive* prim) {
     permute(&prim->normals, 3);
     permute(&prim->weights, 4);
     permute(&prim->joints, 4);
+    permute(&prim->uvs, 2);
+    permute(&prim->colours, 4);
     for (auto& t : prim->target_positions) permute(&t, 3);
     for (auto& t : prim->target_normals) permute(&t, 3);
     std::vector<uint32_t> inverse(n);

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "bake/point_grid.h"
+#include "bake/point_hierarchy_nearest.h"
 
 namespace stipple::bake {
 
@@ -16,6 +17,9 @@ constexpr int kRelevantNeighbours = 4;
 // Normals more than ~120 degrees apart: the other side of a thin sheet, not a neighbour.
 constexpr double kSameSideDot = -0.5;
 constexpr double kQuarterTurn = 1.5707963267948966;
+// Candidates a point chooses its neighbours from in a crowded place (kCrowdedCandidates):
+// its nearest, so the search stays O(log n) per point whatever the surface.
+constexpr uint32_t kCrowdedNeighbours = 16;
 
 // One level's search structure: the points up to the level's end copied in the order of
 // their grid cells ("slots"), so that a search reads neighbouring memory, not points spread
@@ -27,6 +31,11 @@ struct Level {
     std::vector<uint32_t> id_of, slot_of;    // slot -> point, point -> slot
     std::vector<double> xyz, normal;         // per slot
     std::vector<char> placed_point, placed;  // per point / per slot
+    NearestPoints crowded;                   // over the slots, built when first needed
+    bool crowded_built = false;
+    std::vector<char> crowded_slot;  // per slot: its cells hold > kCrowdedCandidates points
+    mutable std::vector<std::pair<double, uint32_t>> crowded_near;
+    mutable uint64_t examined = 0;  // work counter of nearest_placed()
 
     explicit Level(const LevelPoints& p) : pts(p), placed_point(p.size(), 0) {}
 
@@ -49,6 +58,29 @@ struct Level {
             placed[s] = placed_point[i];
         }
         grid.build(xyz.data(), end, cell);  // the same cells, now in slot order
+        crowded_built = false;
+        // Slots whose 27 cells hold more than kCrowdedCandidates points (counted once per
+        // cell: slots are in cell order) search through the kd-tree instead.
+        crowded_slot.assign(end, 0);
+        int64_t cell_at[3] = {-1, -1, -1};
+        size_t count = 0;
+        for (uint32_t s = 0; s < end; ++s) {
+            bool same = true;
+            for (int k = 0; k < 3; ++k) {
+                const int64_t ck = grid.cell_of(at(s)[k], k);
+                same = same && ck == cell_at[k];
+                cell_at[k] = ck;
+            }
+            if (!same) {
+                count = 0;
+                grid.visit(at(s), 1, [&](uint32_t) { ++count; });
+            }
+            crowded_slot[s] = count > kCrowdedCandidates;
+            if (crowded_slot[s] && !crowded_built) crowded.build(xyz.data(), end);
+            crowded_built = crowded_built || crowded_slot[s];
+        }
+        for (uint32_t s = 0; s < end && crowded_built; ++s)
+            if (placed[s]) crowded.mark(s);
     }
 
     const double* at(uint32_t s) const { return &xyz[size_t(s) * 3]; }
@@ -70,9 +102,19 @@ struct Level {
     // Distance from slot s to the nearest placed point; searches one, then two rings of
     // cells, and reports at most two cells (far enough to go first).
     double nearest_placed(uint32_t s) const {
+        if (crowded_slot[s]) {  // the same, through the kd-tree
+            std::vector<std::pair<double, uint32_t>>& near = crowded_near;
+            const double reach = 2 * grid.cell();
+            crowded.nearest_marked(
+                at(s), 1, reach * reach,
+                [&](uint32_t t) { return t != s && placed[t] && same_side(s, t); }, &near);
+            examined += kCrowdedNeighbours;
+            return near.empty() ? reach : std::sqrt(near[0].first);
+        }
         double best = 1e300;
         for (int ring = 1; ring <= 2; ++ring) {
             grid.visit(at(s), ring, [&](uint32_t t) {
+                ++examined;
                 if (t != s && placed[t] && same_side(s, t)) best = std::min(best, distance2(s, t));
             });
             if (std::sqrt(best) <= ring * grid.cell()) return std::sqrt(best);
@@ -96,20 +138,29 @@ struct Level {
             }
             placed[slot_of[i]] = 1;
             placed_point[i] = 1;
+            if (crowded_built) crowded.mark(slot_of[i]);
             order->push_back(i);
         }
     }
 
     // Up to kRelevantNeighbours neighbours of point i among the grid's points: the nearest
     // in each quarter of the tangent plane (the first quarter centred on the nearest point),
-    // then the nearest of the rest. Writes point ids.
-    void neighbours_of(uint32_t i, std::vector<std::pair<double, uint32_t>>* near,
-                       std::vector<uint32_t>* out) const {
+    // then the nearest of the rest. Writes point ids. `around`: the slots of the 27 cells
+    // around i's; more than kCrowdedCandidates of them: i chooses among its
+    // kCrowdedNeighbours nearest (within two cells) instead.
+    void neighbours_of(uint32_t i, const std::vector<uint32_t>& around,
+                       std::vector<std::pair<double, uint32_t>>* near, std::vector<uint32_t>* out) {
         const uint32_t s = slot_of[i];
         near->clear();
-        grid.visit(at(s), 1, [&](uint32_t t) {
-            if (t != s && same_side(s, t)) near->push_back({distance2(s, t), t});
-        });
+        if (crowded_slot[s]) {
+            const double reach = 2 * grid.cell();
+            crowded.nearest(
+                at(s), kCrowdedNeighbours, reach * reach,
+                [&](uint32_t t) { return t != s && same_side(s, t); }, near);
+        } else {
+            for (uint32_t t : around)
+                if (t != s && same_side(s, t)) near->push_back({distance2(s, t), t});
+        }
         std::sort(near->begin(), near->end());
         out->clear();
         if (near->empty()) return;
@@ -155,7 +206,7 @@ LevelOrder by_levels(const LevelPoints& points, double area, bool farthest_first
     result.order.reserve(n);
     Level level(points);
     std::vector<std::pair<double, uint32_t>> near;
-    std::vector<uint32_t> chosen, found;
+    std::vector<uint32_t> chosen, found, around;
     std::vector<uint8_t> found_count;
     result.neighbour_offsets.assign(size_t(n) + 1, 0);
     uint32_t begin = 0;
@@ -174,10 +225,25 @@ LevelOrder by_levels(const LevelPoints& points, double area, bool farthest_first
         // point order.
         found.assign(size_t(end - begin) * kRelevantNeighbours, 0);
         found_count.assign(end - begin, 0);
+        int64_t cell_at[3] = {-1, -1, -1};  // the cell `around` was gathered for
         for (uint32_t slot = 0; slot < end; ++slot) {
             const uint32_t i = level.id_of[slot];
             if (i < begin) continue;
-            level.neighbours_of(i, &near, &chosen);
+            bool same = true;
+            for (int k = 0; k < 3; ++k) {
+                const int64_t ck = level.grid.cell_of(level.at(slot)[k], k);
+                same = same && ck == cell_at[k];
+                cell_at[k] = ck;
+            }
+            const bool crowded = level.crowded_slot[slot];
+            if (!same) {  // slots are in cell order: once per cell
+                around.clear();
+                if (!crowded)
+                    level.grid.visit(level.at(slot), 1, [&](uint32_t t) { around.push_back(t); });
+                result.candidates += around.size();
+            }
+            result.candidates += crowded ? kCrowdedNeighbours : around.size();
+            level.neighbours_of(i, around, &near, &chosen);
             std::copy(chosen.begin(), chosen.end(),
                       found.begin() + std::ptrdiff_t(i - begin) * kRelevantNeighbours);
             found_count[i - begin] = uint8_t(chosen.size());
@@ -190,6 +256,7 @@ LevelOrder by_levels(const LevelPoints& points, double area, bool farthest_first
         }
         begin = end;
     }
+    result.candidates += level.examined;
     for (uint32_t i = begin; i < n; ++i) {  // points past the last level: none expected
         result.order.push_back(i);
         result.neighbour_offsets[i + 1] = uint32_t(result.neighbours.size());

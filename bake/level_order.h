@@ -23,6 +23,7 @@ struct LevelOrder {
     std::vector<uint32_t> order;              // point ids, coarse to fine, each prefix even
     std::vector<uint32_t> neighbour_offsets;  // per point id (size() + 1)
     std::vector<uint32_t> neighbours;         // relevant neighbours, as point ids
+    uint64_t candidates = 0;  // work counter: points the neighbour searches examined
 };
 
 // Orders every level farthest first and gives each point up to 4 relevant neighbours among

@@ -13,6 +13,7 @@
 #include "anim/finite.h"
 #include "bake/bake_random.h"
 #include "bake/base_mesh.h"
+#include "bake/point_hierarchy_collapse.h"
 #include "bake/radius_calibration.h"
 #include "bake/sample_elimination.h"
 #include "bake/surface_projection.h"
@@ -302,7 +303,7 @@ struct Builder {
                 PointRecord& r = points[size_t(removed.idx())];
                 r.neighbours = one_ring(m, removed);
                 r.radius = mean_distance(uint32_t(removed.idx()), r.neighbours, m);
-                m.collapse(h);
+                collapse_halfedge(m, h);  // OpenMesh's collapse without its O(valence) walk
                 --remaining;
                 for (Mesh::VertexEdgeIter it = m.ve_iter(kept); it.is_valid(); ++it)
                     heap.push({length(*it), it->idx()});

@@ -84,6 +84,10 @@ struct HierarchyStats {
     // simplify, relax: input triangles examined by the projections (bake/surface_projection.h;
     // a work counter: it grows linearly with the mesh whatever its connectivity).
     uint64_t projection_candidates = 0;
+    // eliminate, relax: samples examined by the neighbour searches of the eliminations, points
+    // by the level order's and relevant-neighbour searches (a work counter, linear whatever
+    // the connectivity: crowded places take the k nearest, bake/point_hierarchy_nearest.h).
+    uint64_t neighbour_candidates = 0;
 };
 
 // Errors: malformed_input (no triangles, a non-finite position, an index out of range, no

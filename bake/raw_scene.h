@@ -64,6 +64,27 @@ struct RawMorphTarget {
     std::vector<float> normal_deltas;    // 3 * vertex_count, or empty (no NORMAL deltas)
 };
 
+// A decoded base colour texture (glTF 2.0 §3.8 images, §3.9.2 baseColorTexture) with its
+// sampler's wrap modes (§3.8.4.2, GL enums: 10497 REPEAT, 33071 CLAMP_TO_EDGE, 33648
+// MIRRORED_REPEAT). RGBA8 as stored in the file (sRGB colour, linear alpha), row 0 at v = 0.
+struct RawTexture {
+    uint32_t width = 0, height = 0;
+    std::vector<uint8_t> rgba;  // 4 * width * height
+    int wrap_s = 10497, wrap_t = 10497;
+};
+
+// One part of the surface (thesis §7.4: the unit a look, such as transparency, applies to):
+// one glTF material, or one primitive that has no material. The names are the glTF names
+// (empty when the file gives none).
+struct RawPart {
+    std::string material_name;
+    std::vector<std::string> mesh_names;  // meshes with triangles in the part
+    float colour[4] = {1, 1, 1, 1};       // baseColorFactor, linear RGBA
+    int32_t texture = -1;                 // index into RawScene::textures, or -1
+    bool blend = false;                   // alphaMode BLEND (§3.9.6)
+    bool transparent = false;             // drawn by stipples only (blend, or --transparent)
+};
+
 // The whole input, flattened into one triangle mesh.
 //
 // If the scene is animated (it has a skin or clips), vertices are skinned at runtime:
@@ -107,6 +128,18 @@ struct RawScene {
     // The input's up axis, recorded in the asset (format::kUpY, kUpZ). The scene itself is
     // always Y-up once apply_up_axis() has run (bake/scene_orientation.h).
     uint32_t up_axis = 1;
+
+    // Looks (issue 9): the parts with their materials, the part of every triangle (empty
+    // when there is one part or none), texture coordinates (2 per vertex, of the set the
+    // vertex's part samples; empty when no part has a texture) and the decoded textures.
+    // No parts (OBJ/PLY/STL): the whole mesh is one white opaque part.
+    std::vector<RawPart> parts;
+    std::vector<uint16_t> triangle_part;
+    std::vector<float> uvs;
+    std::vector<RawTexture> textures;
+    // Vertex colours (glTF COLOR_0, which multiplies the base colour, §3.9.2; PLY/OBJ vertex
+    // colours, sRGB-decoded): 4 per vertex, linear RGBA; empty when the input has none.
+    std::vector<float> colours;
 
     std::vector<std::string> warnings;  // things skipped or repaired, for the bake log
 

@@ -8,6 +8,7 @@
 #include "bake/bake_random.h"
 #include "bake/level_order.h"
 #include "bake/point_grid.h"
+#include "bake/point_hierarchy_nearest.h"
 #include "bake/sample_ghosts.h"
 #include "bake/surface_samples.h"
 
@@ -140,13 +141,16 @@ struct SampleWeighting {
     double d_min, d_max;
     double inv_d_max = 1 / d_max, d_max2 = d_max * d_max;
 
+    bool same_side(uint32_t i, uint32_t j) const {
+        return (t.normal[host[i]] | t.normal[host[j]]) > kSameSideDot;
+    }
     double operator()(uint32_t i, uint32_t j) const {
         double d2 = 0;
         for (int k = 0; k < 3; ++k) {
             const double e = xyz[size_t(i) * 3 + size_t(k)] - xyz[size_t(j) * 3 + size_t(k)];
             d2 += e * e;
         }
-        if (d2 >= d_max2 || (t.normal[host[i]] | t.normal[host[j]]) <= kSameSideDot) return 0.0;
+        if (d2 >= d_max2 || !same_side(i, j)) return 0.0;
         double w = 1 - std::max(std::sqrt(d2), d_min) * inv_d_max;
         w *= w;
         w *= w;
@@ -160,14 +164,24 @@ struct NearLists {
     std::vector<uint32_t> near;
 };
 
+// Neighbours a sample keeps in a crowded place (kCrowdedCandidates): its nearest, so that
+// the lists, and the work of an elimination, stay linear in the samples whatever the surface.
+constexpr uint32_t kCrowdedNeighbours = 8;
+
 // Weights, and the samples within d_max of each, so that an elimination updates only
 // those. Samples are sorted by cell: the 27 cells around a cell are gathered once for all
-// of its samples.
+// of its samples. Where those cells hold more than kCrowdedCandidates samples (much surface
+// in little volume: the pages of a non-manifold star around their edge), a sample weighs and
+// keeps only its kCrowdedNeighbours nearest within d_max (a kd-tree query, O(log n)); on a
+// surface nothing changes (the bundled assets' cells hold at most 114; a list holds ~15).
 std::vector<double> initial_weights(const SampleWeighting& weight_between, uint32_t n,
-                                    const PointGrid& grid, NearLists* lists) {
+                                    const PointGrid& grid, NearLists* lists, HierarchyStats* st) {
     const double* xyz = weight_between.xyz;
     std::vector<double> weight(n, 0.0);
     std::vector<uint32_t> around;
+    std::vector<std::pair<double, uint32_t>> nearest;
+    NearestPoints crowded;
+    bool crowded_built = false;
     lists->offsets.assign(size_t(n) + 1, 0);
     lists->near.reserve(size_t(n) * 16);
     int64_t cell[3] = {-1, -1, -1};
@@ -181,13 +195,28 @@ std::vector<double> initial_weights(const SampleWeighting& weight_between, uint3
         if (!same) {
             around.clear();
             grid.visit(&xyz[size_t(i) * 3], 1, [&](uint32_t j) { around.push_back(j); });
+            st->neighbour_candidates += around.size();
         }
-        for (uint32_t j : around) {
-            if (j == i) continue;
-            const double w = weight_between(i, j);
-            if (w == 0) continue;
-            weight[i] += w;
-            lists->near.push_back(j);
+        if (around.size() > kCrowdedCandidates) {
+            if (!crowded_built) crowded.build(xyz, n);
+            crowded_built = true;
+            crowded.nearest(
+                &xyz[size_t(i) * 3], kCrowdedNeighbours, weight_between.d_max2,
+                [&](uint32_t j) { return j != i && weight_between.same_side(i, j); }, &nearest);
+            for (const auto& [d2, j] : nearest) {
+                weight[i] += weight_between(i, j);
+                lists->near.push_back(j);
+            }
+            st->neighbour_candidates += nearest.size();
+        } else {
+            for (uint32_t j : around) {
+                if (j == i) continue;
+                const double w = weight_between(i, j);
+                if (w == 0) continue;
+                weight[i] += w;
+                lists->near.push_back(j);
+            }
+            st->neighbour_candidates += around.size();
         }
         lists->offsets[i + 1] = uint32_t(lists->near.size());
     }
@@ -200,7 +229,7 @@ std::vector<double> initial_weights(const SampleWeighting& weight_between, uint3
 // survivors, ghosts too (sorted by cell); `gone`, if not null, gets the real others in the
 // order they went. Reports progress as phase "eliminate" going from `from` to `to`.
 void eliminate(const Triangles& t, double area, uint32_t target, Samples* s, Samples* gone,
-               const HierarchyConfig& config, float from, float to) {
+               const HierarchyConfig& config, float from, float to, HierarchyStats* st) {
     const uint32_t n = s->size(), reals = s->reals();
     if (reals <= target) return;
     config.report("eliminate", from);
@@ -215,7 +244,7 @@ void eliminate(const Triangles& t, double area, uint32_t target, Samples* s, Sam
     std::vector<char> alive(n, 1);
     std::vector<uint32_t> went;
     went.reserve(reals - target);
-    WeightHeap heap(initial_weights(weight_between, n, grid, &lists));
+    WeightHeap heap(initial_weights(weight_between, n, grid, &lists, st));
     const uint8_t* ghost = s->ghost.data();
     for (uint32_t left = reals; left > target;) {
         if ((left & 0xFFFF) == 0)
@@ -282,7 +311,7 @@ BakeError eliminate_hierarchy(const RawScene& scene, const HierarchyConfig& conf
     }
     // Down to the point count; the eliminated samples are not points.
     // The first elimination is ~3/4 of the work, the halvings the rest.
-    eliminate(t, t.total, n, &s, nullptr, config, 0.0f, 0.75f);
+    eliminate(t, t.total, n, &s, nullptr, config, 0.0f, 0.75f, &st);
     // Progressive sampling (Yuksel 2015): halve the survivors again and again, each time with
     // the weights of the smaller set (r_max grows by sqrt 2 per halving). Read backwards, a halving
     // from m to m / 2 gives ranks m - 1 down to m / 2: the last sample to go is the first after the
@@ -294,7 +323,7 @@ BakeError eliminate_hierarchy(const RawScene& scene, const HierarchyConfig& conf
         halvings.emplace_back();
         const float done = 0.75f + 0.25f * (1.0f - float(reals) / float(n));
         eliminate(t, t.total, reals / 2, &s, &halvings.back(), config, done,
-                  0.75f + 0.25f * (1.0f - float(reals / 2) / float(n)));
+                  0.75f + 0.25f * (1.0f - float(reals / 2) / float(n)), &st);
     }
     if (s.reals() == 1) level_end.push_back(1);
     std::reverse(level_end.begin(), level_end.end());
@@ -314,6 +343,7 @@ BakeError eliminate_hierarchy(const RawScene& scene, const HierarchyConfig& conf
         lp.normal.insert(lp.normal.end(),
                          {t.normal[host][0], t.normal[host][1], t.normal[host][2]});
     const LevelOrder neighbours = relevant_neighbours(lp, t.total);
+    st.neighbour_candidates += neighbours.candidates;
     *out = PointHierarchy();
     out->host_triangle = points.host;
     out->bary_u = points.u;

@@ -7,7 +7,7 @@
 #include <queue>
 #include <utility>
 
-#include "bake/point_grid.h"
+#include "bake/point_hierarchy_nearest.h"
 #include "bake/position_weld.h"
 #include "runtime/asset_format.h"  // kNoFace
 
@@ -91,71 +91,73 @@ NearestEdges nearest_edges(const EdgeGeometry& geo, double width) {
     return out;
 }
 
-// The real samples that may hide a ghost: the edges cut into pieces at most width / 2
-// long, each with the real samples beyond its plane that could hide one of its ghosts: the
-// samples thinned to a spacing of about width / 8 (every m-th of the systematic sampling is
-// an even sampling too), each piece's list sorted by the distance beyond the plane.
+// The real samples that may hide a ghost: the samples thinned to a spacing of about
+// width / 8 (every m-th of the systematic sampling is an even sampling too), in a kd-tree;
+// and the edges cut into pieces at most width / 2 long, whose midpoints bound how far from
+// its piece a ghost looks. (A list per piece of the samples beyond its plane, as before, holds
+// O(samples) entries per piece where much surface crowds a little volume, as around the
+// edge of a non-manifold star: quadratic. The tree answers the same question per ghost.)
 struct Hiders {
-    std::vector<uint32_t> first_piece;   // per edge, its run of pieces (edges + 1 entries)
-    std::vector<uint32_t> beyond_first;  // per piece, its run in `beyond` (pieces + 1)
-    std::vector<std::pair<double, uint32_t>> beyond;  // (distance beyond, thinned sample)
-    std::vector<double> thin_xyz;                     // the thinned samples, 3 each
-    double slack = 0;                                 // their spacing
+    std::vector<uint32_t> first_piece;  // per edge, its run of pieces (edges + 1 entries)
+    std::vector<double> piece_xyz;      // the pieces' midpoints, 3 each
+    std::vector<double> thin_xyz;       // the thinned samples, 3 each
+    std::vector<uint32_t> thin_host;
+    NearestPoints tree;  // over thin_xyz
+    // Per edge: more thinned samples near its midpoint than many sheets of surface put there
+    // (kCrowdedSheets): much surface in little volume, the rim of a non-manifold star. It
+    // gets no pieces and its ghosts are dropped: the surface there is crowded by other
+    // surface anyway, and testing them would cost O(samples) each.
+    std::vector<uint8_t> crowded;
+    double slack = 0;  // their spacing
+    double look = 0;   // a ghost's hiders lie within this of its piece's midpoint
 };
 
-// The edges cut into pieces: their midpoints, 3 each; hiders->first_piece per edge.
-std::vector<double> edge_pieces(const Boundary& edges, double width, Hiders* hiders) {
-    std::vector<double> piece_xyz;
+// A sheet of surface through a ball of radius 4 slack holds about 16 pi thinned samples;
+// more than kCrowdedSheets times that around an edge's midpoint is crowded.
+constexpr double kCrowdedSheets = 16;
+
+void crowded_edges(const Boundary& edges, Hiders* h) {
+    h->crowded.assign(edges.size(), 0);
+    if (h->thin_host.empty()) return;
+    const double radius = std::min(h->look, 4 * h->slack);
+    const double ratio = radius / h->slack;
+    const uint32_t limit = uint32_t(kCrowdedSheets * 3.14159 * ratio * ratio);
+    for (uint32_t e = 0; e < edges.size(); ++e) {
+        const Vec3 mid = (edges.a[e] + edges.b[e]) * 0.5;
+        h->crowded[e] = h->tree.count_within(mid.data(), radius * radius, limit) > limit;
+    }
+}
+
+// The uncrowded edges cut into pieces: their midpoints, 3 each; first_piece per edge.
+void edge_pieces(const Boundary& edges, double width, Hiders* hiders) {
     hiders->first_piece.assign(size_t(edges.size()) + 1, 0);
     for (uint32_t e = 0; e < edges.size(); ++e) {
         const Vec3 ab = edges.b[e] - edges.a[e];
-        const uint32_t k = uint32_t(std::max(1.0, std::ceil(ab.norm() / (0.5 * width))));
+        const uint32_t k =
+            hiders->crowded[e] ? 0 : uint32_t(std::max(1.0, std::ceil(ab.norm() / (0.5 * width))));
         for (uint32_t q = 0; q < k; ++q) {
             const Vec3 c = edges.a[e] + ab * ((q + 0.5) / k);
-            piece_xyz.insert(piece_xyz.end(), {c[0], c[1], c[2]});
+            hiders->piece_xyz.insert(hiders->piece_xyz.end(), {c[0], c[1], c[2]});
         }
         hiders->first_piece[e + 1] = hiders->first_piece[e] + k;
     }
-    return piece_xyz;
 }
 
-Hiders hiders_of(const EdgeGeometry& geo, const Samples& s, double width) {
-    const Boundary& edges = geo.edges;
-    Hiders out;
-    const std::vector<double> piece_xyz = edge_pieces(edges, width, &out);
+void hiders_of(const EdgeGeometry& geo, const Samples& s, double width, Hiders* out) {
     const uint32_t n = s.size();
     const uint32_t stride =
         uint32_t(std::max(1.0, std::floor(double(n) / (64 * geo.t.total / (width * width)))));
-    out.slack = std::sqrt(geo.t.total * stride / double(n));
-    std::vector<uint32_t> thin_host;
+    out->slack = std::sqrt(geo.t.total * stride / double(n));
     for (uint32_t i = 0; i < n; i += stride) {
-        thin_host.push_back(s.host[i]);
-        out.thin_xyz.insert(out.thin_xyz.end(), s.xyz.begin() + std::ptrdiff_t(i) * 3,
-                            s.xyz.begin() + std::ptrdiff_t(i) * 3 + 3);
+        out->thin_host.push_back(s.host[i]);
+        out->thin_xyz.insert(out->thin_xyz.end(), s.xyz.begin() + std::ptrdiff_t(i) * 3,
+                             s.xyz.begin() + std::ptrdiff_t(i) * 3 + 3);
     }
     // A ghost is within 1.04 width of its piece's midpoint, and looks as far as width + slack.
-    const double look = 2.05 * width + out.slack;
-    PointGrid thinned;
-    thinned.build(out.thin_xyz.data(), uint32_t(thin_host.size()), look);
-    // A ghost `depth` beyond the plane is hidden only by samples less than 2 depth + slack
-    // beyond.
-    out.beyond_first.assign(size_t(out.first_piece.back()) + 1, 0);
-    for (uint32_t e = 0; e < edges.size(); ++e)
-        for (uint32_t k = out.first_piece[e]; k < out.first_piece[e + 1]; ++k) {
-            const Vec3 mid(piece_xyz[size_t(k) * 3], piece_xyz[size_t(k) * 3 + 1],
-                           piece_xyz[size_t(k) * 3 + 2]);
-            thinned.visit(&piece_xyz[size_t(k) * 3], 1, [&](uint32_t j) {
-                const Vec3 r(out.thin_xyz[size_t(j) * 3], out.thin_xyz[size_t(j) * 3 + 1],
-                             out.thin_xyz[size_t(j) * 3 + 2]);
-                const double past = (r - edges.a[e]) | edges.out[e];
-                if (past > 1e-9 * width && geo.same_side(thin_host[j], e) &&
-                    (r - mid).sqrnorm() <= look * look)
-                    out.beyond.push_back({past, j});
-            });
-            std::sort(out.beyond.begin() + out.beyond_first[k], out.beyond.end());
-            out.beyond_first[k + 1] = uint32_t(out.beyond.size());
-        }
-    return out;
+    out->look = 2.05 * width + out->slack;
+    out->tree.build(out->thin_xyz.data(), uint32_t(out->thin_host.size()));
+    crowded_edges(geo.edges, out);
+    edge_pieces(geo.edges, width, out);
 }
 
 // The nearest of the `candidates` edges to p (in triangle f) within `width` that bounds the
@@ -182,20 +184,26 @@ uint32_t nearest_candidate(const EdgeGeometry& geo, uint32_t f, const Vec3& p,
 }
 
 // Is the ghost g, `depth` beyond the plane of `edge` at parameter edge_h, on a real surface
-// there (a real sample beyond the plane nearer to it than the plane)?
-bool is_hidden(const Hiders& hiders, uint32_t edge, double edge_h, double depth, const Vec3& g) {
+// there? A thinned real sample near its piece (within `look` of the midpoint), on its side of
+// the surface and beyond the plane (by less than 2 depth + slack: nearer it cannot hide it),
+// lies nearer to g than depth + slack.
+bool is_hidden(const EdgeGeometry& geo, const Hiders& hiders, uint32_t edge, double edge_h,
+               double depth, double width, const Vec3& g) {
+    const Boundary& edges = geo.edges;
+    if (hiders.crowded[edge]) return true;
     const uint32_t pieces = hiders.first_piece[edge + 1] - hiders.first_piece[edge];
     const uint32_t k = hiders.first_piece[edge] + std::min(pieces - 1, uint32_t(edge_h * pieces));
-    bool hidden = false;
-    for (uint32_t j = hiders.beyond_first[k];
-         j < hiders.beyond_first[k + 1] && hiders.beyond[j].first < 2 * depth + hiders.slack &&
-         !hidden;
-         ++j) {
-        const size_t r = size_t(hiders.beyond[j].second) * 3;
-        const Vec3 real(hiders.thin_xyz[r], hiders.thin_xyz[r + 1], hiders.thin_xyz[r + 2]);
-        hidden = (real - g).norm() < depth + hiders.slack;
-    }
-    return hidden;
+    const Vec3 mid(hiders.piece_xyz[size_t(k) * 3], hiders.piece_xyz[size_t(k) * 3 + 1],
+                   hiders.piece_xyz[size_t(k) * 3 + 2]);
+    const double reach = depth + hiders.slack;
+    return hiders.tree.any(g.data(), reach * reach * (1 + 1e-9), [&](uint32_t j) {
+        const size_t r3 = size_t(j) * 3;
+        const Vec3 r(hiders.thin_xyz[r3], hiders.thin_xyz[r3 + 1], hiders.thin_xyz[r3 + 2]);
+        const double past = (r - edges.a[edge]) | edges.out[edge];
+        return past > 1e-9 * width && past < 2 * depth + hiders.slack &&
+               geo.same_side(hiders.thin_host[j], edge) &&
+               (r - mid).sqrnorm() <= hiders.look * hiders.look && (r - g).norm() < reach;
+    });
 }
 
 // The edges a sample of triangle f may be mirrored across: the triangle's own boundary
@@ -275,7 +283,8 @@ void add_ghosts(const Triangles& t, const Boundary& edges, double density, doubl
     if (edges.size() == 0 || !(width > 0)) return;
     const EdgeGeometry geo{t, edges};
     const NearestEdges near = nearest_edges(geo, width);
-    const Hiders hiders = hiders_of(geo, *s, width);
+    Hiders hiders;
+    hiders_of(geo, *s, width, &hiders);
     // The sources: systematic sampling over the triangles near the boundary, then mirrored.
     const double offset = rng->uniform();
     double running = 0;
@@ -296,7 +305,7 @@ void add_ghosts(const Triangles& t, const Boundary& edges, double density, doubl
             if (edge == kNoEdge) continue;
             const double depth = -((p - edges.a[edge]) | edges.out[edge]);
             const Vec3 g = p + edges.out[edge] * (2 * depth);
-            if (is_hidden(hiders, edge, edge_h, depth, g)) continue;
+            if (is_hidden(geo, hiders, edge, edge_h, depth, width, g)) continue;
             s->xyz.insert(s->xyz.end(), {g[0], g[1], g[2]});
             s->host.push_back(f);
             s->u.push_back(float(a));

@@ -6,6 +6,7 @@
 #include <cassert>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -107,17 +108,29 @@ bool ply_type(const std::string& t) {
     return std::find(std::begin(kTypes), std::end(kTypes), t) != std::end(kTypes);
 }
 
+struct PlyProperty {
+    bool list = false;
+    std::string count_type, type;  // count_type: list properties only
+};
+struct PlyElement {
+    uint64_t count = 0;
+    std::vector<PlyProperty> properties;
+};
+struct PlyHeader {
+    std::string format;
+    std::vector<PlyElement> elements;
+    uint64_t body_offset = 0;  // first byte after the end_header line
+};
+
 // OpenMesh 9's PLY header reader loops forever (its string stream growing) on a header it
 // cannot tokenise (no end_header, or a keyword or count its stream fails on) and crashes on
 // a property line before any element line (both found by tests/fuzz/fuzz_mesh_import.cpp). So a
 // .ply reaches it only with a header of the PLY grammar: "ply", then format (version 1.0) / comment
 // / obj_info / element NAME COUNT / property TYPE NAME / property list TYPE TYPE NAME lines, then
 // end_header, within the first 64 KiB.
-BakeError check_ply_header(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
+BakeError check_ply_header(std::istream& in, PlyHeader* header) {
     std::string line;
-    size_t read = 0;
-    bool element = false;  // a property line belongs to the element before it
+    uint64_t read = 0;
     for (int n = 1; read < (64u << 10) && std::getline(in, line); ++n) {
         read += line.size() + 1;
         if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -128,31 +141,129 @@ BakeError check_ply_header(const std::string& path) {
         if (n == 1) {
             ok = key == "ply" && a.empty();
         } else if (key == "end_header") {
+            header->body_offset = read;
             return BakeError();
         } else if (key == "comment" || key == "obj_info") {
             ok = true;
         } else if (key == "format") {
             ok = (a == "ascii" || a == "binary_little_endian" || a == "binary_big_endian") &&
                  b == "1.0" && c.empty();
+            header->format = a;
         } else if (key == "element") {
-            ok = element =
-                !a.empty() && !b.empty() && b.size() <= 10 && c.empty() &&
-                std::all_of(b.begin(), b.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+            ok = !a.empty() && !b.empty() && b.size() <= 10 && c.empty() &&
+                 std::all_of(b.begin(), b.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+            if (ok) header->elements.push_back({std::stoull(b), {}});
         } else if (key == "property") {
-            ok = element && (a == "list" ? ply_type(b) && ply_type(c) && !d.empty()
-                                         : ply_type(a) && !b.empty() && c.empty());
+            const bool list = a == "list";
+            ok = !header->elements.empty() && (list ? ply_type(b) && ply_type(c) && !d.empty()
+                                                    : ply_type(a) && !b.empty() && c.empty());
+            if (ok)
+                header->elements.back().properties.push_back({list, list ? b : "", list ? c : a});
         }
         if (!ok) return malformed_input("PLY header line " + std::to_string(n) + " is not valid");
     }
     return malformed_input("PLY header has no end_header line");
 }
 
+// Bytes of one value of a PLY type (ply_type() names only).
+uint64_t ply_type_bytes(const std::string& t) {
+    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+    return t == "double" || t == "float64" ? 8 : 4;
+}
+
+// One ASCII value of type t as OpenMesh's stream reads it: an integer ([+-]digits) for the
+// integer types, a decimal number (strtod, no nan/inf/hex) for float and double.
+bool ply_ascii_value(const std::string& token, const std::string& t) {
+    const bool real = t == "float" || t == "double" || t == "float32" || t == "float64";
+    const size_t digits = token[0] == '+' || token[0] == '-' ? 1 : 0;
+    if (!real)
+        return token.size() > digits && std::all_of(token.begin() + long(digits), token.end(),
+                                                    [](char ch) { return ch >= '0' && ch <= '9'; });
+    if (token.find_first_not_of("0123456789+-.eE") != std::string::npos) return false;
+    char* end = nullptr;
+    (void)std::strtod(token.c_str(), &end);
+    return end == token.c_str() + token.size();
+}
+
+// OpenMesh 9's ASCII PLY body reader does not stop when its stream fails inside the element
+// data: a body that stops being numbers grows a vector of face vertex handles until memory
+// runs out (found by tests/fuzz/fuzz_mesh_import.cpp). So every element row the header
+// promises must be there first: in an ASCII body, one number of its type per scalar property
+// and a count then that many numbers per list; in a binary body, at least the bytes of the
+// rows' scalars and list counts.
+BakeError check_ply_body(std::istream& in, const PlyHeader& h, uint64_t file_size) {
+    const uint64_t body = file_size > h.body_offset ? file_size - h.body_offset : 0;
+    for (size_t e = 0; e < h.elements.size(); ++e) {
+        uint64_t row = 0;  // least bytes (binary) or tokens (ASCII) of one row
+        for (const PlyProperty& p : h.elements[e].properties)
+            row += h.format == "ascii" ? 1 : ply_type_bytes(p.list ? p.count_type : p.type);
+        if (h.elements[e].count > body / std::max<uint64_t>(row, 1))
+            return malformed_input("PLY element " + std::to_string(e) + " has " +
+                                   std::to_string(h.elements[e].count) +
+                                   " rows, more than the file holds");
+    }
+    if (h.format != "ascii") return BakeError();
+    std::string token;
+    for (size_t e = 0; e < h.elements.size(); ++e) {
+        const PlyElement& element = h.elements[e];
+        if (element.properties.empty()) continue;
+        for (uint64_t r = 0; r < element.count; ++r) {
+            for (const PlyProperty& p : element.properties) {
+                bool ok =
+                    bool(in >> token) && ply_ascii_value(token, p.list ? p.count_type : p.type);
+                uint64_t n = ok && p.list ? std::strtoull(token.c_str(), nullptr, 10) : 0;
+                if (ok && p.list && token[0] == '-') ok = false;
+                for (; ok && n > 0; --n) ok = bool(in >> token) && ply_ascii_value(token, p.type);
+                if (!ok)
+                    return malformed_input("PLY element " + std::to_string(e) + " row " +
+                                           std::to_string(r) + ": not a number of its type");
+            }
+        }
+    }
+    return BakeError();
+}
+
+BakeError check_ply(const std::string& path, uint64_t file_size) {
+    std::ifstream in(path, std::ios::binary);
+    PlyHeader header;
+    const BakeError e = check_ply_header(in, &header);
+    return e.ok() ? check_ply_body(in, header, file_size) : e;
+}
+
+// OBJ's "v x y z r g b" and "vc r g b": OpenMesh 9's reader casts each colour value times 255
+// to a byte, undefined outside [0, 1], and gives a "vc" colour to the last vertex read, out
+// of bounds before the first (UBSan, found by tests/fuzz/fuzz_mesh_import.cpp). Empty unless
+// the line is such a colour (values read as the reader reads them: floats from a stream);
+// *vertices counts the vertex lines the reader accepts.
+std::string obj_colour_error(const std::string& line, uint64_t* vertices) {
+    std::istringstream words(line);
+    std::string key;
+    words >> key;
+    if (key != "v" && key != "vc") return std::string();
+    float value[6];
+    int count = 0;
+    while (count < 6 && words >> value[count]) ++count;
+    if (key == "v" && count >= 3) ++*vertices;
+    if (key == "vc" && *vertices == 0) return "a vertex colour before any vertex";
+    const int first = key == "v" ? 3 : 0;
+    if (key == "v" && count < 6) return std::string();
+    for (int k = first; k < count && k < first + 3; ++k)
+        if (!(value[k] >= 0.0f && value[k] <= 1.0f)) return "a vertex colour is outside [0, 1]";
+    return std::string();
+}
+
 // OpenMesh 9's OBJ reader asserts (aborting the bake) on a face corner without a vertex
-// index ("f /1 ..."; found by tests/fuzz/fuzz_mesh_import.cpp): refuse those first.
-BakeError check_obj_faces(const std::string& path) {
+// index ("f /1 ..."; found by tests/fuzz/fuzz_mesh_import.cpp), and casts vertex colours
+// unchecked (obj_colour_error): refuse those first.
+BakeError check_obj(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::string line;
+    uint64_t vertices = 0;
     for (uint64_t n = 1; std::getline(in, line); ++n) {
+        const std::string colour = obj_colour_error(line, &vertices);
+        if (!colour.empty())
+            return malformed_input("OBJ line " + std::to_string(n) + ": " + colour);
         if (line.size() < 2 || line[0] != 'f' || !std::isspace(static_cast<unsigned char>(line[1])))
             continue;
         std::istringstream words(line.substr(1));
@@ -166,6 +277,16 @@ BakeError check_obj_faces(const std::string& path) {
     return BakeError();
 }
 
+// A file's vertex colour (8-bit sRGB, as PLY and OBJ colours are meant) as linear RGBA.
+void append_colour(const OpenMesh::Vec3uc& c, RawScene* scene) {
+    for (int k = 0; k < 3; ++k) {
+        const float x = float(c[k]) / 255.0f;
+        scene->colours.push_back(x <= 0.04045f ? x / 12.92f
+                                               : std::pow((x + 0.055f) / 1.055f, 2.4f));
+    }
+    scene->colours.push_back(1.0f);
+}
+
 BakeError read_static_mesh(const std::string& path, RawScene* scene) {
     // Only a regular file under the cap reaches OpenMesh's readers (a directory or
     // /dev/zero would otherwise be read until memory runs out).
@@ -173,20 +294,25 @@ BakeError read_static_mesh(const std::string& path, RawScene* scene) {
     const BakeError checked = check_input_file(path, kMaxModelFileBytes, &size);
     if (!checked.ok()) return checked;
     const std::string ext = lowercase_extension(path);
-    const BakeError syntax = ext == ".ply"   ? check_ply_header(path)
-                             : ext == ".obj" ? check_obj_faces(path)
+    const BakeError syntax = ext == ".ply"   ? check_ply(path, size)
+                             : ext == ".obj" ? check_obj(path)
                                              : BakeError();
     if (!syntax.ok()) return syntax;
     OpenMesh::TriMesh_ArrayKernelT<> mesh;
     bool ok = false;
     std::vector<std::string> messages;
+    // Vertex colours where the file has them (PLY red/green/blue[/alpha], OBJ "v x y z r g b").
+    mesh.request_vertex_colors();
+    OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexColor;
     {
         OpenMeshLogCapture capture;
         // Polygons are split into triangle fans by TriMesh::add_face. Faces OpenMesh cannot
         // connect manifoldly ("complex edge") are kept on duplicated vertices by its readers.
-        ok = OpenMesh::IO::read_mesh(mesh, path);
+        ok = OpenMesh::IO::read_mesh(mesh, path, options);
         messages = capture.lines();
     }
+    // STL has no vertex colours (OpenMesh's STL reader reports some anyway).
+    const bool coloured = ext != ".stl" && options.check(OpenMesh::IO::Options::VertexColor);
     if (!ok) {
         return malformed_input("cannot read mesh" +
                                (messages.empty() ? std::string() : ": " + messages.front()));
@@ -221,10 +347,14 @@ BakeError read_static_mesh(const std::string& path, RawScene* scene) {
                                        " has a non-finite position");
             }
             for (int c = 0; c < 3; ++c) scene->positions.push_back(p[c]);
+            if (coloured) append_colour(mesh.color(OpenMesh::VertexHandle(int(index))), scene);
         }
         index = slot;
     }
     scene->indices = std::move(triangles);
+    if (std::all_of(scene->colours.begin(), scene->colours.end(),
+                    [](float c) { return c == 1.0f; }))
+        scene->colours.clear();
     compute_vertex_normals(scene->positions, scene->indices, &scene->normals);
     return BakeError();
 }
@@ -263,15 +393,23 @@ BakeError import_static_mesh(const std::string& path, RawScene* out) {
     return BakeError();
 }
 
-BakeError import_scene(const std::string& path, RawScene* out) {
+BakeError import_scene(const std::string& path, RawScene* out, const ImportOptions& options) {
     assert(out != nullptr);
     const std::string ext = lowercase_extension(path);
-    if (ext == ".gltf" || ext == ".glb") return import_gltf(path, out);
-    if (ext == ".obj" || ext == ".ply" || ext == ".stl") return import_static_mesh(path, out);
-    *out = RawScene();
-    return bake_error(BakeErrorCode::unsupported,
-                      path + ": unsupported file extension '" + ext +
-                          "' (expected .gltf, .glb, .obj, .ply or .stl)");
+    BakeError error;
+    if (ext == ".gltf" || ext == ".glb") {
+        error = import_gltf(path, out, options);
+    } else if (ext == ".obj" || ext == ".ply" || ext == ".stl") {
+        error = import_static_mesh(path, out);
+    } else {
+        *out = RawScene();
+        return bake_error(BakeErrorCode::unsupported,
+                          path + ": unsupported file extension '" + ext +
+                              "' (expected .gltf, .glb, .obj, .ply or .stl)");
+    }
+    if (error.ok()) error = check_transparent_names(options, *out);
+    if (!error.ok()) *out = RawScene();
+    return error;
 }
 
 }  // namespace stipple::bake

@@ -136,6 +136,34 @@ InputSurface::InputSurface(const RawScene& scene, const std::vector<uint32_t>& w
     build_hubs(classes);
 }
 
+// The class most of a hub's triangles share besides the hub: the other end of a
+// non-manifold edge they all hang from (a star), or UINT32_MAX if no class is in more than
+// half of them.
+uint32_t InputSurface::edge_partner(uint32_t c) const {
+    std::vector<uint32_t> others;
+    const uint32_t b = around_offsets_[c], e = around_offsets_[c + 1];
+    for (uint32_t i = b; i < e; ++i)
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t o = corner_class_[size_t(around_[i]) * 3 + size_t(k)];
+            if (o != c) others.push_back(o);
+        }
+    std::sort(others.begin(), others.end());
+    for (size_t i = 0, j = 0; i < others.size(); i = j) {
+        while (j < others.size() && others[j] == others[i]) ++j;
+        if (2 * (j - i) > e - b) return others[i];
+    }
+    return UINT32_MAX;
+}
+
+// A direction from the hub: unit, and for the hub of a star perpendicular to its edge (the
+// pages of a star differ only by their angle around the edge; from the hub they all point
+// nearly along it, and a point near the edge would be equally near all of them).
+Vec3d InputSurface::Hub::key(Vec3d d) const {
+    d -= axis * (d | axis);  // axis is 0 for the hub of a fan
+    const double len = d.norm();
+    return len > 0 ? d / len : d;
+}
+
 // Each hub's triangles by their direction from the hub (the unit vector to the centroid): in
 // a fan or a star the triangles near a point around the hub are those in its direction.
 void InputSurface::build_hubs(uint32_t classes) {
@@ -146,16 +174,28 @@ void InputSurface::build_hubs(uint32_t classes) {
         hub_of_class_[c] = uint32_t(hubs_.size());
         hubs_.emplace_back();
         Hub& hub = hubs_.back();
+        const uint32_t partner = edge_partner(c);
         const uint32_t t0 = around_[b];
         for (int k = 0; k < 3; ++k)
             if (corner_class_[size_t(t0) * 3 + size_t(k)] == c) hub.centre = corner(t0, k);
+        bool found = false;
+        for (uint32_t i = b; i < e && partner != UINT32_MAX && !found; ++i)
+            for (int k = 0; k < 3 && !found; ++k)
+                if (corner_class_[size_t(around_[i]) * 3 + size_t(k)] == partner) {
+                    hub.axis = corner(around_[i], k);
+                    found = true;
+                }
+        if (found) {
+            hub.axis -= hub.centre;
+            const double len = hub.axis.norm();
+            hub.axis = len > 0 ? hub.axis / len : Vec3d(0, 0, 0);
+        }
         std::vector<double> xyz;
         xyz.reserve(size_t(e - b) * 3);
         for (uint32_t i = b; i < e; ++i) {
             const uint32_t t = around_[i];
-            Vec3d d = (corner(t, 0) + corner(t, 1) + corner(t, 2)) / 3.0 - hub.centre;
-            const double len = d.norm();
-            if (len > 0) d /= len;
+            const Vec3d d =
+                hub.key((corner(t, 0) + corner(t, 1) + corner(t, 2)) / 3.0 - hub.centre);
             xyz.insert(xyz.end(), {d[0], d[1], d[2]});
         }
         hub.directions.build(std::move(xyz),
@@ -195,6 +235,8 @@ SurfacePoint InputSurface::locate(uint32_t t, const Vec3d& p) const {
 // of O(valence); without hubs the candidates are exactly the vertex-sharing ones.
 void InputSurface::gather(const Vec3d& p, const uint32_t* seeds, int seed_count) const {
     candidates_.clear();
+    uint32_t queried[64];  // hubs whose nearest are in candidates_
+    int n_queried = 0;
     for (int i = 0; i < seed_count; ++i) {
         candidates_.push_back(seeds[i]);
         for (int k = 0; k < 3; ++k) {
@@ -204,11 +246,17 @@ void InputSurface::gather(const Vec3d& p, const uint32_t* seeds, int seed_count)
                 candidates_.insert(candidates_.end(), around_.begin() + b, around_.begin() + e);
                 continue;
             }
-            const Hub& hub = hubs_[hub_of_class_[c]];
-            Vec3d d = p - hub.centre;
-            const double len = d.norm();
-            if (len > 0) d /= len;
-            hub.directions.nearest(d, kHubNearest, &candidates_);
+            // Each hub once: its nearest depend on p only (the seeds of a star all share both
+            // ends of its edge).
+            const uint32_t h = hub_of_class_[c];
+            if (std::find(queried, queried + n_queried, h) != queried + n_queried) continue;
+            if (n_queried < 64) queried[n_queried++] = h;
+            const Hub& hub = hubs_[h];
+            const Vec3d key = hub.key(p - hub.centre);
+            // On a star's edge itself every page holds p (so do the seeds): and a query from
+            // the centre of the keys' circle would examine them all.
+            if (hub.axis.sqrnorm() > 0 && key.sqrnorm() == 0) continue;
+            hub.directions.nearest(key, kHubNearest, &candidates_);
         }
     }
     std::sort(candidates_.begin(), candidates_.end());

@@ -69,6 +69,7 @@ class InputSurface {
 
   private:
     void build_hubs(uint32_t classes);
+    uint32_t edge_partner(uint32_t c) const;
     void gather(const Vec3d& p, const uint32_t* seeds, int seed_count) const;
 
     const RawScene& scene_;
@@ -80,7 +81,9 @@ class InputSurface {
     std::vector<uint32_t> hub_of_class_;  // index into hubs_, or UINT32_MAX (empty: no hub)
     struct Hub {
         Vec3d centre;
-        NearestTree directions;  // unit directions from the centre to its triangles' centroids
+        Vec3d axis{0, 0, 0};     // a star's hub: unit direction of its shared edge
+        NearestTree directions;  // key() of the directions to its triangles' centroids
+        Vec3d key(Vec3d d) const;
     };
     std::vector<Hub> hubs_;
     mutable std::vector<uint32_t> candidates_;

@@ -412,6 +412,7 @@ void relax_hierarchy(const InputSurface& surface, const BaseMesh& base,
         lp.normal.insert(lp.normal.end(), {n[0], n[1], n[2]});
     }
     const LevelOrder lo = order_levels(lp, area);
+    if (stats) stats->neighbour_candidates += lo.candidates;
     // Radius per level (§5.3), spread inside the level by rank: the point of rank i gets
     // the region area / (i + 1) of an even prefix (runtime/stipple_size.h). Radii from the
     // neighbours' distances would step with the levels (4-5x apart in size), and tone with

@@ -59,13 +59,18 @@ std::vector<uint32_t> smoothing_groups(const RawScene& s, const std::vector<uint
     return parent;
 }
 
-// Appends a copy of vertex `v` (position, skin data; normal set by the caller).
+// Appends a copy of vertex `v` (position, texture coordinates, colour, skin data; normal set
+// by the caller).
 void duplicate_vertex(uint32_t v, RawScene* scene) {
     RawScene& s = *scene;
     for (int i = 0; i < 3; ++i) {
         s.positions.push_back(s.positions[size_t(v) * 3 + size_t(i)]);
         s.normals.push_back(0.0f);
     }
+    if (!s.uvs.empty())
+        for (int i = 0; i < 2; ++i) s.uvs.push_back(s.uvs[size_t(v) * 2 + size_t(i)]);
+    if (!s.colours.empty())
+        for (int i = 0; i < 4; ++i) s.colours.push_back(s.colours[size_t(v) * 4 + size_t(i)]);
     if (!s.joints.empty())
         for (int i = 0; i < 4; ++i) {
             s.joints.push_back(s.joints[size_t(v) * 4 + size_t(i)]);

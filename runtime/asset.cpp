@@ -278,6 +278,21 @@ const format::SectionEntry* find_section(const format::SectionEntry* table, uint
     return nullptr;
 }
 
+// The sections version 3 added (each optional), after MESH, SKIN and PNTQ they refer to.
+Status parse_version3_sections(const uint8_t* bytes, const format::SectionEntry* const* sec,
+                               DecodeBudget* budget, Asset* a) {
+    auto reader = [&](const format::SectionEntry* s) {
+        return Reader{bytes + s->offset, size_t(s->size)};
+    };
+    Status st;
+    if (sec[kSectionSides]) st = parse_sides(reader(sec[kSectionSides]), a->mesh, budget, a);
+    if (st.ok() && sec[kSectionBounds]) st = parse_bounds(reader(sec[kSectionBounds]), a);
+    if (st.ok() && sec[kSectionStrokes])
+        st = detail::parse_strokes(reader(sec[kSectionStrokes]), a);
+    if (st.ok() && sec[kSectionLooks]) st = detail::parse_looks(reader(sec[kSectionLooks]), a);
+    return st;
+}
+
 Status parse(const uint8_t* bytes, size_t size, DecodeBudget* budget, Asset* a) {
     if (size < sizeof(format::FileHeader) || std::memcmp(bytes, format::kMagic, 4) != 0)
         return load_failure(LoadError::bad_magic, "not a .stip asset (bad magic)");
@@ -320,14 +335,14 @@ Status parse(const uint8_t* bytes, size_t size, DecodeBudget* budget, Asset* a) 
 #endif
     }
     const uint32_t tags[kSectionCount] = {
-        format::kTagMesh,        format::kTagSkin,  format::kTagClips,
-        format::kTagPointStream, format::kTagEdges, format::kTagMorph,
-        format::kTagBounds,      format::kTagSides, format::kTagStrokes};
+        format::kTagMesh,    format::kTagSkin,  format::kTagClips,  format::kTagPointStream,
+        format::kTagEdges,   format::kTagMorph, format::kTagBounds, format::kTagSides,
+        format::kTagStrokes, format::kTagLooks};
     const format::SectionEntry* sec[kSectionCount];
     for (int i = 0; i < kSectionCount; ++i) {
-        // Version 2 had no BNDS or SIDE; like any unknown tag there, they are ignored.
-        const bool known =
-            h.version >= 3 || (i != kSectionBounds && i != kSectionSides && i != kSectionStrokes);
+        // Version 2 had no BNDS, SIDE, STRK or LOOK (kSectionBounds and after); like any
+        // unknown tag there, they are ignored.
+        const bool known = h.version >= 3 || i < kSectionBounds;
         sec[i] = known ? find_section(table, h.section_count, tags[i]) : nullptr;
         a->section_size[i] = sec[i] ? sec[i]->size : 0;
     }
@@ -351,12 +366,7 @@ Status parse(const uint8_t* bytes, size_t size, DecodeBudget* budget, Asset* a) 
                                  budget, a);
     if (st.ok()) st = detail::parse_point_stream(reader(sec[3]), a->mesh.triangle_count, budget, a);
     if (st.ok() && sec[4]) st = parse_edges(reader(sec[4]), a->mesh, &a->edges);
-    if (st.ok() && sec[kSectionSides])
-        st = parse_sides(reader(sec[kSectionSides]), a->mesh, budget, a);
-    if (st.ok() && sec[kSectionBounds]) st = parse_bounds(reader(sec[kSectionBounds]), a);
-    if (st.ok() && sec[kSectionStrokes])
-        st = detail::parse_strokes(reader(sec[kSectionStrokes]), a);
-    return st;
+    return st.ok() ? parse_version3_sections(bytes, sec, budget, a) : st;
 }
 
 // The file's bytes are in out->storage: validates and decodes them.
@@ -452,7 +462,7 @@ int find_clip(const Asset& asset, const char* name) {
 
 const char* section_name(int section) {
     static const char* const kNames[kSectionCount] = {"MESH", "SKIN", "CLIP", "PNTQ", "EDGE",
-                                                      "MRPH", "BNDS", "SIDE", "STRK"};
+                                                      "MRPH", "BNDS", "SIDE", "STRK", "LOOK"};
     return section >= 0 && section < kSectionCount ? kNames[section] : "?";
 }
 

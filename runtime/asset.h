@@ -79,7 +79,8 @@ struct StrokesView {
 // Every pointer is null and every count 0 when the asset has no LOOK section.
 struct LooksView {
     // 4 per baked point, RGBA8 (linear): the material's base colour at the point (factor
-    // times the base colour texture sampled at the point's barycentric position); nullptr: none.
+    // times the base colour texture sampled at the point's barycentric position, times the
+    // vertex colour there); nullptr: none (all white).
     const uint8_t* point_colour = nullptr;
     uint32_t part_count = 0;                  // parts (glTF primitives/materials), 0: one part
     const uint16_t* triangle_part = nullptr;  // per MESH triangle, < part_count, or nullptr
@@ -91,6 +92,7 @@ struct LooksView {
     const uint32_t* creases = nullptr;
 };
 enum : uint8_t { kPartTransparent = 1 };  // thesis §7.4: no fill, only dots and lines
+static_assert(kPartTransparent == format::kLookPartTransparent, "LOOK part flag");
 
 struct SkinView {
     anim::Skeleton skeleton = {};
@@ -109,6 +111,7 @@ enum : int {
     kSectionBounds,
     kSectionSides,
     kSectionStrokes,
+    kSectionLooks,
     kSectionCount
 };
 

@@ -28,6 +28,7 @@ constexpr uint32_t kTagMorph = fourcc('M', 'R', 'P', 'H');        // morph targe
 constexpr uint32_t kTagBounds = fourcc('B', 'N', 'D', 'S');       // v3: up axis, rest/clip bounds
 constexpr uint32_t kTagSides = fourcc('S', 'I', 'D', 'E');        // v3: double-sided triangle runs
 constexpr uint32_t kTagStrokes = fourcc('S', 'T', 'R', 'K');      // paintstrokes (GI'98)
+constexpr uint32_t kTagLooks = fourcc('L', 'O', 'O', 'K');        // colours, parts, creases
 constexpr uint32_t kNoFace = 0xFFFFFFFFu;                         // second face of a boundary edge
 
 struct FileHeader {  // 32 bytes at offset 0
@@ -136,6 +137,24 @@ struct StrokePointRecord {  // 28 bytes
     uint8_t reserved2;        // 0
 };
 static_assert(sizeof(StrokePointRecord) == 28, "stroke point layout");
+
+// LOOK section (optional; version 3 files may carry it): the surface's looks (thesis ch. 7-8).
+//   LooksHeader, u32 creases[4 * crease_count] (vertex a, vertex b, face 0, face 1),
+//   u8 point_colour[4 * point_colour_count] (RGBA8, linear), u8 part_colour[4 * part_count]
+//   (RGBA8), u16 triangle_part[triangle_part_count], u8 part_flags[part_count] (kLookPart*)
+// Each array is aligned to its element size by the order alone: no padding anywhere.
+// point_colour_count is 0 or the PNTQ point count; triangle_part_count is 0 (with
+// part_count 0: one part) or the MESH triangle count (with part_count >= 1).
+struct LooksHeader {  // 20 bytes
+    uint32_t point_colour_count;
+    uint32_t part_count;
+    uint32_t triangle_part_count;
+    uint32_t crease_count;
+    uint32_t reserved;  // 0
+};
+static_assert(sizeof(LooksHeader) == 20, "looks header layout");
+constexpr uint8_t kLookPartTransparent = 1;  // thesis §7.4: the part draws no fill
+constexpr uint8_t kLookPartKnownFlags = kLookPartTransparent;
 
 // Section checksums: crc32() of runtime/crc32.h.
 

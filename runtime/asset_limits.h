@@ -37,6 +37,8 @@ constexpr uint32_t kMaxPointsPerStroke = 256;
 constexpr float kMaxStrokeCoordinate = 1e6f;
 constexpr float kStrokeBaryTolerance = 1e-5f;
 constexpr float kStrokeNormalTolerance = 0.02f;
+// LOOK: parts (triangle part ids are u16).
+constexpr uint32_t kMaxParts = 65536;
 // File: sections in the table.
 constexpr uint32_t kMaxSections = 64;
 // File: load_asset_file reads regular files of at most this many bytes (a 20M-point bake with

@@ -55,5 +55,8 @@ Status parse_point_stream(Reader r, uint32_t triangle_count, DecodeBudget* budge
 // STRK section (runtime/asset_strokes.cpp): paintstrokes, validated in place against the
 // mesh, skin and point hierarchy already in `a` (parse it after them).
 Status parse_strokes(Reader r, Asset* a);
+// LOOK section (runtime/asset_looks.cpp): point colours, parts, creases, validated in place
+// against the mesh and point hierarchy already in `a` (parse it after them).
+Status parse_looks(Reader r, Asset* a);
 
 }  // namespace stipple::detail

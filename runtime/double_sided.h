@@ -23,4 +23,9 @@ uint32_t double_sided_point_flags(uint32_t count, const uint32_t* host_triangle,
 uint32_t face_double_sided_points(uint32_t count, const uint8_t* flags, const float* positions,
                                   float* normals, const glm::vec3& eye);
 
+// The same for the points list[0 .. list_count) only (level of detail).
+uint32_t face_listed_double_sided_points(const uint32_t* list, uint32_t list_count,
+                                         const uint8_t* flags, const float* positions,
+                                         float* normals, const glm::vec3& eye);
+
 }  // namespace stipple

@@ -63,15 +63,24 @@ Status check_limits(const FrameConfig& c) {
         check("stroke_vertex_budget", c.stroke_vertex_budget, s.stroke_vertex_budget),
         check("stroke_lod_px", c.stroke_lod_px, s.stroke_lod_px),
         check("stroke_nudge", c.stroke_nudge, s.stroke_nudge),
+        check("style", int(c.style), s.style),
+        check("toon_bands", c.toon_bands, s.toon_bands),
+        check("toon_shade", c.toon_shade, s.toon_shade),
+        check("toon_ink", c.toon_ink, s.toon_ink),
+        check("tone_gamma", c.tone_gamma, s.tone_gamma),
+        check("tone_contrast", c.tone_contrast, s.tone_contrast),
     };
     for (const Status& st : checks)
         if (!st.ok()) return st;
-    const float* colours[3] = {c.background, c.paper, c.ink};
-    const char* names[3] = {"background channel", "paper channel", "ink channel"};
-    for (int k = 0; k < 3; ++k)
+    const float* colours[4] = {c.background, c.paper, c.ink, c.fill};
+    const char* names[4] = {"background channel", "paper channel", "ink channel", "fill channel"};
+    for (int k = 0; k < 4; ++k)
         for (int i = 0; i < 3; ++i)
             if (!(colours[k][i] >= 0.0f && colours[k][i] <= 1.0f))
                 return out_of_range(names[k], double(colours[k][i]), 0.0, 1.0);
+    if (c.path != FramePath::cpu && c.path != FramePath::gpu)
+        return make_status(StatusCode::invalid_argument, "path %d is neither cpu (0) nor gpu (1)",
+                           int(c.path));
     return check_lights(c);
 }
 
@@ -90,6 +99,9 @@ Status resolve_frame_config(const FrameConfig& in, FrameConfig* out) {
     c.stroke_tol_theta = or_default(c.stroke_tol_theta, s.stroke_tol_theta);
     c.stroke_tol_z = or_default(c.stroke_tol_z, s.stroke_tol_z);
     c.stroke_vertex_budget = or_default(c.stroke_vertex_budget, s.stroke_vertex_budget);
+    c.toon_bands = or_default(c.toon_bands, s.toon_bands);
+    c.tone_gamma = or_default(c.tone_gamma, s.tone_gamma);
+    c.tone_contrast = or_default(c.tone_contrast, s.tone_contrast);
     Status st = check_limits(c);
     if (!st.ok()) return st;
     for (int i = 0; i < c.light_count; ++i) {  // unit directions
@@ -107,6 +119,8 @@ FrameConfig default_frame_config() {
     zero.zoom = zero.fov_degrees = zero.max_point_size = zero.smooth_slope = zero.line_width = 0;
     zero.stroke_tol_theta = zero.stroke_tol_z = 0;
     zero.stroke_vertex_budget = 0;
+    zero.toon_bands = 0;
+    zero.tone_gamma = zero.tone_contrast = 0;
     FrameConfig resolved;
     // The table's defaults lie inside its own ranges, so this cannot fail.
     if (!resolve_frame_config(zero, &resolved).ok()) return FrameConfig();

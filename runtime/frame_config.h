@@ -9,8 +9,11 @@
 
 #include "anim/anim.h"
 #include "runtime/status.h"
+#include "runtime/style.h"
 
 namespace stipple {
+
+struct ParticleStyle;  // runtime/particle_style.h
 
 // Default and allowed range (inclusive) of one numeric frame setting.
 template <typename T>
@@ -34,6 +37,10 @@ struct Light {
     // from the upper left); false: in world space.
     bool camera_space = true;
 };
+
+// Where a frame's point stages (place, relevance, size) run: on the CPU, or in a GLES 3.0
+// vertex shader with transform feedback (runtime/gpu_stages.h, docs/gpu-path.md).
+enum class FramePath : uint8_t { cpu, gpu };
 
 // The one table of frame-setting defaults and limits.
 struct FrameSettings {
@@ -66,6 +73,16 @@ struct FrameSettings {
     float background[3] = {1.0f, 1.0f, 1.0f};  // white paper; each channel in [0, 1]
     float paper[3] = {1.0f, 1.0f, 1.0f};       // the body's colour
     float ink[3] = {0.0f, 0.0f, 0.0f};         // dots and silhouettes
+    // Looks (runtime/style.h, docs/styles.md): the style; toon bands, the level of the darkest
+    // band, toon dots' colour as a fraction of the fill's; the tone curve on the target tone
+    // before the size rule (gamma, then contrast about 0.5; 1, 1: the identity).
+    Setting<int> style{int(Style::classic), 0, kStyleTotal - 1};
+    Setting<int> toon_bands{3, 2, 3};
+    Setting<float> toon_shade{0.6f, 0.0f, 1.0f};
+    Setting<float> toon_ink{0.4f, 0.0f, 1.0f};
+    Setting<float> tone_gamma{1.0f, 0.1f, 10.0f};
+    Setting<float> tone_contrast{1.0f, 0.1f, 10.0f};
+    float fill[3] = {0.55f, 0.8f, 0.35f};  // toon fill and colour dots without LOOK colours
 };
 inline constexpr FrameSettings kFrameSettings{};
 
@@ -98,7 +115,13 @@ struct FrameConfig {
     Light lights[kMaxLights];
     float ambient = kFrameSettings.ambient.fallback;
     anim::Skinning skinning = anim::Skinning::lbs;  // or dual quaternions (no candy wrapper)
+    // Where place, relevance and size run (fixed at init; runtime/gpu_stages.h).
+    FramePath path = FramePath::cpu;
     bool silhouettes = true;  // draw silhouette lines (needs the asset's EDGE section)
+    // Level of detail (thesis §9.1.1, runtime/point_clusters.h): place, relevance and size run
+    // only on clusters in view and front-facing, cut where no dot can be drawn. The dots are
+    // the same as without (docs/lod.md); false runs every point.
+    bool lod = true;
     float line_width = kFrameSettings.line_width.fallback;  // silhouette width in pixels
     bool depth_readback = false;  // keep the mesh depth for renderer_read_depth (dot lists)
     // Run-time refinement (runtime/point_refinement.h): extra points generated per frame where
@@ -117,6 +140,19 @@ struct FrameConfig {
     // Debug: call glGetError after the depth, lines and dots passes and each readback, and
     // record the errors in the renderer (pipeline_gl_errors). Off: no check costs a frame.
     bool check_gl_errors = false;
+    // View-dependent particles (GI'01; runtime/particle_frame.h, docs/particles.md): draw this
+    // style's strokes instead of stipples (find_particle_style). nullptr: stipples. The style
+    // must outlive the pipeline.
+    const ParticleStyle* particle_style = nullptr;
+    // Looks (runtime/style.h): zero toon_bands, tone_gamma or tone_contrast means the default.
+    Style style = Style(kFrameSettings.style.fallback);
+    int toon_bands = kFrameSettings.toon_bands.fallback;
+    float toon_shade = kFrameSettings.toon_shade.fallback;
+    float toon_ink = kFrameSettings.toon_ink.fallback;
+    float tone_gamma = kFrameSettings.tone_gamma.fallback;
+    float tone_contrast = kFrameSettings.tone_contrast.fallback;
+    float fill[3] = {kFrameSettings.fill[0], kFrameSettings.fill[1], kFrameSettings.fill[2]};
+    bool creases = true;  // crease lines (thesis §8.2's sharp edges) when the asset has them
 };
 
 // Writes `in` with defaults in its zero fields (see FrameConfig) to *out. Fails with

@@ -11,6 +11,7 @@
 #include "runtime/camera.h"
 #include "runtime/double_sided.h"
 #include "runtime/frame_pose.h"
+#include "runtime/particle_frame.h"
 #include "runtime/point_placement.h"
 #include "runtime/silhouette.h"
 #include "runtime/stroke_anchor.h"
@@ -30,17 +31,27 @@ void setup_camera(Pipeline* p) {
 
 // Only dots with a size go to the GPU: at 100k points a frame draws ~5k, and uploading
 // and vertex-shading the other 95% cost llvmpipe more than this compaction costs here.
-uint32_t compact_drawn_points(Pipeline* p, uint32_t count) {
+void compact_point(Pipeline* p, uint32_t i, uint32_t at) {
+    const float* position = p->point_positions.get() + size_t(i) * 3;
+    float* draw_position = p->draw_positions.get() + size_t(at) * 3;
+    draw_position[0] = position[0];
+    draw_position[1] = position[1];
+    draw_position[2] = position[2];
+    p->draw_sizes[at] = p->size[i];
+}
+
+// Points first .. count - 1; with level of detail the baked ones are the selection's drawn
+// ones (ascending, as the full stages draw them) and `first` is the baked count.
+uint32_t compact_drawn_points(Pipeline* p, uint32_t first, uint32_t count) {
     uint32_t drawn = 0;
     const float* size = p->size.get();
-    const float* position = p->point_positions.get();
-    float* draw_size = p->draw_sizes.get();
-    float* draw_position = p->draw_positions.get();
-    for (uint32_t i = 0; i < count; ++i) {
-        draw_position[drawn * 3] = position[i * 3];
-        draw_position[drawn * 3 + 1] = position[i * 3 + 1];
-        draw_position[drawn * 3 + 2] = position[i * 3 + 2];
-        draw_size[drawn] = size[i];
+    if (first > 0)
+        for (uint32_t j = 0; j < p->clusters.run_count; ++j) {
+            compact_point(p, p->clusters.run[j], drawn);
+            drawn += size[p->clusters.run[j]] > 0.0f;
+        }
+    for (uint32_t i = first; i < count; ++i) {
+        compact_point(p, i, drawn);
         drawn += size[i] > 0.0f;
     }
     return drawn;
@@ -198,6 +209,10 @@ RendererConfig renderer_config(const Pipeline& p) {
     std::memcpy(rc.background, c.background, sizeof(rc.background));
     std::memcpy(rc.paper, c.paper, sizeof(rc.paper));
     std::memcpy(rc.ink, c.ink, sizeof(rc.ink));
+    rc.vertex_colours = p.style.vertex_colours.get();  // looks: runtime/style.h
+    rc.part_colours = p.asset->looks.part_colour != nullptr;
+    rc.dot_colours = p.style.dot_colours != nullptr;
+    rc.max_creases = p.asset->looks.crease_count;
     return rc;
 }
 
@@ -210,10 +225,18 @@ Status init_memory(Pipeline* p, const Asset& asset, const FrameConfig& config) {
     *p = Pipeline();
     p->asset = &asset;
     Status st = resolve_frame_config(config, &p->config);
+    if (st.ok() && p->config.particle_style)  // strokes instead of stipples: docs/particles.md
+        particle_style_frame_config(*p->config.particle_style, &p->config);
     if (st.ok()) st = alloc_pose_buffers(p);
     if (st.ok()) st = alloc_frame_buffers(p);
     if (st.ok()) st = place_rest_pose(p);
+    if (st.ok() && asset.points.point_count > 0)  // Thesis §9.1.1: runtime/point_clusters.h
+        st = point_clusters_init(&p->clusters, asset, p->rest_radius.get());
     if (st.ok()) st = stroke_stage_init(&p->strokes, asset, p->config);
+    if (st.ok()) st = style_init(&p->style, asset, p->point_capacity);  // runtime/style.h
+    if (st.ok() && p->config.particle_style)
+        st = particle_stage_init(&p->particles, asset, *p->config.particle_style, p->config.width,
+                                 p->config.height);
     return st;
 }
 
@@ -237,7 +260,12 @@ Status pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const Fra
     AllocatorScope scope(allocator);
     Status st = init_memory(p, asset, config);
     if (st.ok()) st = renderer_init(&p->renderer, gl, renderer_config(*p));
+    if (st.ok())  // the look of the camera set before the renderer existed (runtime/style.h)
+        renderer_set_look(&p->renderer, p->config, p->size_params.light_direction,
+                          p->style.transparent_parts);
     if (st.ok()) st = stroke_stage_init_gl(&p->strokes, gl, p->config);
+    if (st.ok()) st = particle_stage_init_gl(&p->particles, gl);
+    if (st.ok() && p->config.path == FramePath::gpu) st = gpu_path_init(p);
     if (!st.ok()) {
         pipeline_destroy(p);
         return st;
@@ -245,6 +273,7 @@ Status pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const Fra
     // Draw the rest pose once now: llvmpipe compiles shaders on first use (15-25 ms), which
     // belongs to load time, not to the first frame.
     pipeline_frame(p, AnimationState(), nullptr);
+    p->particles.set.settled = false;  // the first real frame shows its particles at once
     return {};
 }
 
@@ -256,78 +285,185 @@ void pipeline_frame(Pipeline* p, int clip, float time, StageTimes* t) {
 }
 
 void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
+    if (p->particles.enabled) {  // GI'01 strokes instead of stipples
+        pipeline_particle_frame(p, &p->particles, state, t);
+        return;
+    }
     pipeline_update(p, state, t);
     Clock::time_point clock = Clock::now();
-    renderer_draw_mesh(&p->renderer, p->view_projection, p->vertex_positions.get(),
-                       p->asset->mesh.vertex_count);
+    renderer_draw_fill(&p->renderer, p->view_projection, p->vertex_positions.get(),
+                       p->vertex_normals.get(), p->asset->mesh.vertex_count);
     if (p->strokes.enabled) {  // over the depth pass, into its colour and depth, before the ink
         renderer_begin_overlay(&p->renderer);
         stroke_stage_draw(&p->strokes, pipeline_stroke_input(*p));
     }
-    renderer_draw_lines(&p->renderer, p->view_projection, p->lines.get(), p->lines_drawn);
-    renderer_draw_points(&p->renderer, p->view_projection, p->draw_positions.get(),
-                         p->draw_sizes.get(), p->points_drawn);
+    renderer_draw_line_sets(&p->renderer, p->view_projection, p->lines.get(), p->lines_drawn,
+                            p->style.crease_lines.get(), p->style.creases_drawn);
+    if (p->config.path == FramePath::gpu)  // place, relevance and size run here, on the GPU
+        gpu_path_draw_points(p);
+    else
+        renderer_draw_dots(
+            &p->renderer, p->view_projection, p->draw_positions.get(), p->draw_sizes.get(),
+            p->dots_coloured ? p->style.dot_colours.get() : nullptr, p->points_drawn);
     p->renderer.gl.Finish();
     if (t) t->draw += ms_since(&clock);
 }
 
-void pipeline_update(Pipeline* p, const AnimationState& state, StageTimes* t) {
+namespace {
+
+// Where this frame's refinement points live, for their colours (runtime/style.h).
+RefinedHosts refined_hosts(const Pipeline& p) {
+    RefinedHosts r;
+    r.count = p.refined_count;
+    r.triangle = p.refined_triangle.get();
+    r.indices = p.refine_on_points ? p.refinement_domain.indices : p.asset->mesh.indices;
+    r.on_points = p.refine_on_points;
+    return r;
+}
+
+// Thesis Alg. 6.3, 6.4 and 3.2 over every baked point.
+void full_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
     const Asset& a = *p->asset;
-    Clock::time_point clock = Clock::now();
-    pose_mesh(p, state, t, &clock);
     place_points(a.points, a.mesh.indices, p->vertex_positions.get(), p->vertex_normals.get(),
                  p->point_positions.get(), p->point_normals.get());
     face_double_sided_points(a.points.point_count, p->point_double_sided.get(),
                              p->point_positions.get(), p->point_normals.get(), p->size_params.eye);
-    if (t) t->place += ms_since(&clock);
+    if (t) t->place += ms_since(clock);
     const uint32_t baked = a.points.point_count;
     if (p->config.relevance_update)
         recompute_relevance(a.points, p->point_positions.get(), p->radius_scale.get(),
                             p->rest_radius.get(), p->radius.get());
     else
         std::memcpy(p->radius.get(), p->rest_radius.get(), size_t(baked) * 4);
-    if (t) t->relevance += ms_since(&clock);
+    if (t) t->relevance += ms_since(clock);
     size_stipples(baked, p->point_positions.get(), p->point_normals.get(), p->radius.get(),
                   p->size_params, p->size.get());
-    if (t) t->size += ms_since(&clock);
+    p->lod_sizes_clear = false;
+    if (t) t->size += ms_since(clock);
+}
+
+// The same over the clusters' selection (thesis §9.1.1, runtime/point_clusters.h): the
+// points run are placed, re-scaled and sized; their neighbours only placed; every other
+// baked point keeps size 0.
+void lod_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
+    const Asset& a = *p->asset;
+    PointClusters& c = p->clusters;
+    if (p->lod_sizes_clear)
+        point_clusters_clear_sizes(c, p->size.get());
+    else
+        std::fill(p->size.get(), p->size.get() + a.points.point_count, 0.0f);
+    p->lod_sizes_clear = true;
+    LodFrame frame;
+    frame.vertex_positions = p->vertex_positions.get();
+    frame.vertex_normals = p->vertex_normals.get();
+    frame.params = &p->size_params;
+    frame.viewport_width = p->viewport_width;
+    frame.relevance_update = p->config.relevance_update;
+    const uint32_t baked = a.points.point_count;  // hierarchy_running_out's finest quarter
+    if (p->config.refinement_budget > 0) frame.size_from = baked - baked / 4;
+    point_clusters_select(&c, a, frame);
+    const uint32_t* run = c.run.get();
+    place_listed_points(a.points, a.mesh.indices, p->vertex_positions.get(),
+                        p->vertex_normals.get(), c.placed.get(), c.placed_count,
+                        p->point_positions.get(), p->point_normals.get());
+    face_listed_double_sided_points(run, c.run_count, p->point_double_sided.get(),
+                                    p->point_positions.get(), p->point_normals.get(),
+                                    p->size_params.eye);
+    if (t) t->place += ms_since(clock);
+    if (p->config.relevance_update)
+        recompute_listed_relevance(a.points, p->point_positions.get(), p->radius_scale.get(),
+                                   p->rest_radius.get(), run, c.run_count, p->radius.get());
+    else
+        for (uint32_t j = 0; j < c.run_count; ++j) p->radius[run[j]] = p->rest_radius[run[j]];
+    if (t) t->relevance += ms_since(clock);
+    size_listed_stipples(run, c.run_count, p->point_positions.get(), p->point_normals.get(),
+                         p->radius.get(), p->size_params, p->size.get());
+    if (t) t->size += ms_since(clock);
+}
+
+// hierarchy_running_out over the selection: only run points can have a size.
+bool lod_running_out(const PointClusters& c, const float* size, uint32_t baked) {
+    for (uint32_t j = 0; j < c.run_count; ++j)
+        if (c.run[j] >= baked - baked / 4 && size[c.run[j]] > 0.0f) return true;
+    return baked < 4;
+}
+
+// The run-time refinement (runtime/point_refinement.h) after the baked points are sized.
+void refine_stage(Pipeline* p, bool lod, StageTimes* t, Clock::time_point* clock) {
+    const Asset& a = *p->asset;
+    const uint32_t baked = a.points.point_count;
+    RefinedPoints extra;
+    extra.capacity = p->config.refinement_budget;
+    extra.positions = p->point_positions.get() + size_t(baked) * 3;
+    extra.normals = p->point_normals.get() + size_t(baked) * 3;
+    extra.radius = p->radius.get() + baked;
+    extra.triangle = p->refined_triangle.get();
+    extra.index = p->refined_index.get();
+    if (p->refine_on_points) {  // corners are the baked points, as placed this frame
+        if (lod) {  // every corner, not only the selection (close-ups: the cut keeps most)
+            place_points(a.points, a.mesh.indices, p->vertex_positions.get(),
+                         p->vertex_normals.get(), p->point_positions.get(), p->point_normals.get());
+            face_double_sided_points(baked, p->point_double_sided.get(), p->point_positions.get(),
+                                     p->point_normals.get(), p->size_params.eye);
+        }
+        MeshView domain = p->refinement_domain;
+        domain.positions = p->point_positions.get();
+        domain.normals = p->point_normals.get();  // double-sided ones already face the eye
+        refine_points(&p->refinement, domain, domain.positions, domain.normals, nullptr,
+                      p->size_params, p->config.relevance_update, &extra, &p->refinement_stats);
+    } else {
+        refine_points(&p->refinement, a.mesh, p->vertex_positions.get(), p->vertex_normals.get(),
+                      a.sides.triangle_double_sided, p->size_params, p->config.relevance_update,
+                      &extra, &p->refinement_stats);
+    }
+    p->refined_count = extra.count;
+    if (t) t->refine += ms_since(clock);
+    size_stipples(extra.count, extra.positions, extra.normals, extra.radius, p->size_params,
+                  p->size.get() + baked);
+    if (!lod) {
+        fade_baked_points(p->refinement, a.points, p->size.get());
+        return;
+    }
+    if (!p->refinement.hand_over) return;  // as fade_baked_points: the points domain fades none
+    const PointClusters& c = p->clusters;  // fade_baked_points over the selection
+    for (uint32_t j = 0; j < c.run_count; ++j)
+        p->size[c.run[j]] *= p->refinement.fade[a.points.host_triangle[c.run[j]]];
+}
+
+}  // namespace
+
+void pipeline_update(Pipeline* p, const AnimationState& state, StageTimes* t) {
+    const Asset& a = *p->asset;
+    Clock::time_point clock = Clock::now();
+    pose_mesh(p, state, t, &clock);
+    if (p->config.path == FramePath::gpu) return gpu_path_update(p, t);  // runtime/gpu_stages.h
+    const bool lod = p->config.lod && p->clusters.cluster_count > 0;
+    if (lod)
+        lod_point_stages(p, t, &clock);
+    else
+        full_point_stages(p, t, &clock);
+    const uint32_t baked = a.points.point_count;
     // Where the baked hierarchy runs out, continue it (extra points after the baked ones).
     p->refined_count = 0;
     p->refinement_stats = RefinementStats();
-    if (p->config.refinement_budget > 0 && hierarchy_running_out(p->size.get(), baked)) {
-        RefinedPoints extra;
-        extra.capacity = p->config.refinement_budget;
-        extra.positions = p->point_positions.get() + size_t(baked) * 3;
-        extra.normals = p->point_normals.get() + size_t(baked) * 3;
-        extra.radius = p->radius.get() + baked;
-        extra.triangle = p->refined_triangle.get();
-        extra.index = p->refined_index.get();
-        if (p->refine_on_points) {  // corners are the baked points, as placed this frame
-            MeshView domain = p->refinement_domain;
-            domain.positions = p->point_positions.get();
-            domain.normals = p->point_normals.get();  // double-sided ones already face the eye
-            refine_points(&p->refinement, domain, domain.positions, domain.normals, nullptr,
-                          p->size_params, p->config.relevance_update, &extra, &p->refinement_stats);
-        } else {
-            refine_points(&p->refinement, a.mesh, p->vertex_positions.get(),
-                          p->vertex_normals.get(), a.sides.triangle_double_sided, p->size_params,
-                          p->config.relevance_update, &extra, &p->refinement_stats);
-        }
-        p->refined_count = extra.count;
-        if (t) t->refine += ms_since(&clock);
-        size_stipples(extra.count, extra.positions, extra.normals, extra.radius, p->size_params,
-                      p->size.get() + baked);
-        fade_baked_points(p->refinement, a.points, p->size.get());
-    }
-    const uint32_t count = baked + p->refined_count;
-    p->points_drawn = compact_drawn_points(p, count);
+    if (p->config.refinement_budget > 0 && (lod ? lod_running_out(p->clusters, p->size.get(), baked)
+                                                : hierarchy_running_out(p->size.get(), baked)))
+        refine_stage(p, lod, t, &clock);
+    p->points_drawn = compact_drawn_points(p, lod ? baked : 0, baked + p->refined_count);
+    p->dots_coloured = style_dot_colours(&p->style, a, p->config, p->size.get(), refined_hosts(*p));
     if (t) t->size += ms_since(&clock);
     p->lines_drawn = 0;
-    if (p->config.silhouettes && a.edges.edge_count > 0) {
+    const bool creases = p->config.creases && a.looks.crease_count > 0;  // thesis §8.2
+    if ((p->config.silhouettes && a.edges.edge_count > 0) || creases)
         triangle_facing(a.mesh.triangle_count, a.mesh.indices, p->vertex_positions.get(),
                         p->size_params.eye, p->triangle_front.get());
+    if (p->config.silhouettes && a.edges.edge_count > 0)
         p->lines_drawn = silhouette_lines(a.edges, p->triangle_front.get(),
                                           p->vertex_positions.get(), p->lines.get());
-    }
+    p->style.creases_drawn =
+        creases ? crease_lines(a.looks, p->triangle_front.get(), p->vertex_positions.get(),
+                               p->style.crease_lines.get())
+                : 0;
     if (t) t->silhouette += ms_since(&clock);
     stroke_stage_update(&p->strokes, a, pipeline_stroke_input(*p), p->config.stroke_lod_px);
     if (t) t->strokes += ms_since(&clock);
@@ -352,6 +488,8 @@ void pipeline_set_camera(Pipeline* p, const glm::mat4& view, const glm::mat4& pr
     s.smooth_slope = c.smooth_slope;
     s.constant_tone = c.constant_tone;
     s.dark_tone = c.dark_tone;
+    s.tone_gamma = c.tone_gamma;  // the tone curve (runtime/stipple_size.h)
+    s.tone_contrast = c.tone_contrast;
     // The lights to the pose's space: camera-space ones through the inverse view, world-space
     // ones through the inverse model (app frames; identity for the player).
     const glm::mat4 inverse_model = glm::inverse(model);
@@ -373,6 +511,7 @@ void pipeline_set_camera(Pipeline* p, const glm::mat4& view, const glm::mat4& pr
     std::memcpy(r.config.ink, c.ink, sizeof(r.config.ink));
     std::memcpy(r.config.background, c.background, sizeof(r.config.background));
     r.config.line_width = c.line_width;
+    renderer_set_look(&r, c, s.light_direction, p->style.transparent_parts);  // runtime/style.h
 }
 
 Status pipeline_set_view(Pipeline* p, const FrameConfig& in) {
@@ -386,6 +525,14 @@ Status pipeline_set_view(Pipeline* p, const FrameConfig& in) {
     c.fov_degrees = view.fov_degrees;
     c.constant_tone = view.constant_tone;
     c.dark_tone = view.dark_tone;
+    c.style = view.style;  // looks: runtime/style.h
+    c.toon_bands = view.toon_bands;
+    c.toon_shade = view.toon_shade;
+    c.toon_ink = view.toon_ink;
+    c.tone_gamma = view.tone_gamma;
+    c.tone_contrast = view.tone_contrast;
+    std::memcpy(c.fill, view.fill, sizeof(c.fill));
+    c.creases = view.creases;
     c.max_point_size = view.max_point_size;
     c.smooth_slope = view.smooth_slope;
     c.relevance_update = view.relevance_update;
@@ -395,6 +542,7 @@ Status pipeline_set_view(Pipeline* p, const FrameConfig& in) {
     c.stroke_lod_px = view.stroke_lod_px;
     c.stroke_nudge = view.stroke_nudge;
     c.silhouettes = view.silhouettes;
+    c.lod = view.lod;
     c.line_width = view.line_width;
     std::memcpy(c.background, view.background, sizeof(c.background));
     std::memcpy(c.paper, view.paper, sizeof(c.paper));
@@ -408,7 +556,9 @@ Status pipeline_set_view(Pipeline* p, const FrameConfig& in) {
 }
 
 void pipeline_destroy(Pipeline* p) {
+    gpu_stages_destroy(&p->gpu);
     stroke_stage_destroy(&p->strokes);
+    particle_stage_destroy(&p->particles);
     renderer_destroy(&p->renderer);
     *p = Pipeline();
 }

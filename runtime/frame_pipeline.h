@@ -11,7 +11,10 @@
 
 #include "runtime/asset.h"
 #include "runtime/frame_config.h"
+#include "runtime/gpu_stages.h"
 #include "runtime/memory.h"
+#include "runtime/particle_stage.h"
+#include "runtime/point_clusters.h"
 #include "runtime/point_refinement.h"
 #include "runtime/point_triangulation.h"
 #include "runtime/renderer.h"
@@ -78,7 +81,15 @@ struct Pipeline {
     Buffer<float> lines;                 // 6 * edge_count
     uint32_t points_drawn = 0;           // size > 0 in the last frame
     uint32_t lines_drawn = 0;            // silhouette lines
+    ParticleStage particles;             // FrameConfig::particle_style (runtime/particle_frame.h)
     StrokeStage strokes;                 // paintstrokes (empty without STRK)
+    StyleBuffers style;                  // looks: runtime/style.h (empty for an asset without LOOK)
+    bool dots_coloured = false;          // the last frame's dots carry style.dot_colours
+    GpuStages gpu;                       // FrameConfig::path == gpu: runtime/gpu_stages.h
+    // Level of detail (FrameConfig::lod, runtime/point_clusters.h); lod_sizes_clear: every
+    // baked point outside the last selection has size 0.
+    PointClusters clusters;
+    bool lod_sizes_clear = false;
 };
 
 // Resolves `config` (resolve_frame_config: defaults, limits), takes every buffer a frame needs
@@ -123,7 +134,7 @@ StrokeFrameInput pipeline_stroke_input(const Pipeline& p);
 
 // Changes what needs no new memory between frames: the orbit camera (zoom, yaw, pitch,
 // fov_degrees), the tone settings (constant_tone, dark_tone, max_point_size, smooth_slope,
-// relevance_update), lights and ambient, colours (background, paper, ink), silhouettes and
+// relevance_update, lod), lights and ambient, colours (background, paper, ink), silhouettes and
 // their width, and the stroke settings (quality, tolerances, LOD, nudge). The other fields of
 // `view` (sizes, budgets, skinning) are ignored. `view` is resolved like pipeline_init's
 // config; on invalid_argument the pipeline keeps its settings. Per-frame changes of an

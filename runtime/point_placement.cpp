@@ -5,26 +5,42 @@
 
 namespace stipple {
 
+namespace {
+
+inline void place_point(const PointsView& points, const uint32_t* indices, const float* positions,
+                        const float* normals, uint32_t i, float* out_positions,
+                        float* out_normals) {
+    const uint32_t* tri = indices + size_t(points.host_triangle[i]) * 3;
+    const float u = points.bary_u[i], v = points.bary_v[i], w = 1.0f - u - v;
+    const float* a = positions + size_t(tri[0]) * 3;
+    const float* b = positions + size_t(tri[1]) * 3;
+    const float* c = positions + size_t(tri[2]) * 3;
+    const float* na = normals + size_t(tri[0]) * 3;
+    const float* nb = normals + size_t(tri[1]) * 3;
+    const float* nc = normals + size_t(tri[2]) * 3;
+    float n[3];
+    for (int k = 0; k < 3; ++k) {
+        out_positions[size_t(i) * 3 + k] = u * a[k] + v * b[k] + w * c[k];
+        n[k] = u * na[k] + v * nb[k] + w * nc[k];
+    }
+    float len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    float inv = len2 > 1e-20f ? 1.0f / std::sqrt(len2) : 0.0f;
+    for (int k = 0; k < 3; ++k) out_normals[size_t(i) * 3 + k] = n[k] * inv;
+}
+
+}  // namespace
+
 void place_points(const PointsView& points, const uint32_t* indices, const float* positions,
                   const float* normals, float* out_positions, float* out_normals) {
-    for (uint32_t i = 0; i < points.point_count; ++i) {
-        const uint32_t* tri = indices + size_t(points.host_triangle[i]) * 3;
-        const float u = points.bary_u[i], v = points.bary_v[i], w = 1.0f - u - v;
-        const float* a = positions + size_t(tri[0]) * 3;
-        const float* b = positions + size_t(tri[1]) * 3;
-        const float* c = positions + size_t(tri[2]) * 3;
-        const float* na = normals + size_t(tri[0]) * 3;
-        const float* nb = normals + size_t(tri[1]) * 3;
-        const float* nc = normals + size_t(tri[2]) * 3;
-        float n[3];
-        for (int k = 0; k < 3; ++k) {
-            out_positions[size_t(i) * 3 + k] = u * a[k] + v * b[k] + w * c[k];
-            n[k] = u * na[k] + v * nb[k] + w * nc[k];
-        }
-        float len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-        float inv = len2 > 1e-20f ? 1.0f / std::sqrt(len2) : 0.0f;
-        for (int k = 0; k < 3; ++k) out_normals[size_t(i) * 3 + k] = n[k] * inv;
-    }
+    for (uint32_t i = 0; i < points.point_count; ++i)
+        place_point(points, indices, positions, normals, i, out_positions, out_normals);
+}
+
+void place_listed_points(const PointsView& points, const uint32_t* indices, const float* positions,
+                         const float* normals, const uint32_t* list, uint32_t list_count,
+                         float* out_positions, float* out_normals) {
+    for (uint32_t j = 0; j < list_count; ++j)
+        place_point(points, indices, positions, normals, list[j], out_positions, out_normals);
 }
 
 namespace {
@@ -95,18 +111,33 @@ void relevance_scale(const PointsView& points, const float* bind_point_positions
     }
 }
 
+namespace {
+
+inline float relevance_radius(const PointsView& points, const float* point_positions,
+                              const float* scale, const float* fallback_radius, uint32_t i) {
+    const float k = scale[i];
+    if (k > 0.0f) {
+        const float i2 = neighbour_moment(points, point_positions, i).i2;
+        return k * std::sqrt(std::sqrt(std::max(i2, 0.0f)));
+    }
+    if (k < 0.0f) return -k * mean_distance(points, point_positions, i);
+    return fallback_radius[i];
+}
+
+}  // namespace
+
 void recompute_relevance(const PointsView& points, const float* point_positions, const float* scale,
                          const float* fallback_radius, float* out_radius) {
-    for (uint32_t i = 0; i < points.point_count; ++i) {
-        const float k = scale[i];
-        if (k > 0.0f) {
-            const float i2 = neighbour_moment(points, point_positions, i).i2;
-            out_radius[i] = k * std::sqrt(std::sqrt(std::max(i2, 0.0f)));
-        } else if (k < 0.0f) {
-            out_radius[i] = -k * mean_distance(points, point_positions, i);
-        } else {
-            out_radius[i] = fallback_radius[i];
-        }
+    for (uint32_t i = 0; i < points.point_count; ++i)
+        out_radius[i] = relevance_radius(points, point_positions, scale, fallback_radius, i);
+}
+
+void recompute_listed_relevance(const PointsView& points, const float* point_positions,
+                                const float* scale, const float* fallback_radius,
+                                const uint32_t* list, uint32_t list_count, float* out_radius) {
+    for (uint32_t j = 0; j < list_count; ++j) {
+        const uint32_t i = list[j];
+        out_radius[i] = relevance_radius(points, point_positions, scale, fallback_radius, i);
     }
 }
 

@@ -13,6 +13,12 @@ namespace stipple {
 void place_points(const PointsView& points, const uint32_t* indices, const float* positions,
                   const float* normals, float* out_positions, float* out_normals);
 
+// Level of detail (runtime/point_clusters.h): place_points for the points list[0 ..
+// list_count) only; the others' outputs are left as they were.
+void place_listed_points(const PointsView& points, const uint32_t* indices, const float* positions,
+                         const float* normals, const uint32_t* list, uint32_t list_count,
+                         float* out_positions, float* out_normals);
+
 // Mean distance from each point to its relevant neighbours (§4.5) in the pose given by
 // point_positions; 0 for points without neighbours.
 void mean_neighbour_distance(const PointsView& points, const float* point_positions,
@@ -31,5 +37,11 @@ void relevance_scale(const PointsView& points, const float* bind_point_positions
 // `fallback_radius`.
 void recompute_relevance(const PointsView& points, const float* point_positions, const float* scale,
                          const float* fallback_radius, float* out_radius);
+
+// recompute_relevance for the points list[0 .. list_count) only; their relevant neighbours
+// must have been placed this frame.
+void recompute_listed_relevance(const PointsView& points, const float* point_positions,
+                                const float* scale, const float* fallback_radius,
+                                const uint32_t* list, uint32_t list_count, float* out_radius);
 
 }  // namespace stipple

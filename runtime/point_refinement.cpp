@@ -25,6 +25,10 @@ struct Traversal {
     float scale;            // budget scale applied to every count
     RefinedPoints* out;
     uint64_t wanted;
+    uint64_t limit;  // the pass stops counting here (a multiple of the budget)
+    uint64_t work;   // points generated or culled by emit() in this pass
+    uint64_t work_limit;
+    bool full() const { return wanted >= limit || work >= work_limit; }
     // Current triangle.
     uint32_t t;
     const uint32_t* tri;
@@ -63,6 +67,7 @@ double cell_count(const Traversal& s, const Cell& cell) {
 }
 
 void emit(Traversal* s, uint32_t k, const glm::vec2& bary) {
+    ++s->work;
     const float u = bary.x, v = bary.y, w = 1.0f - u - v;
     // Outside the view: never drawn, so neither generated nor counted against the budget.
     const glm::vec4 clip = u * s->vertex[s->tri[0]].clip + v * s->vertex[s->tri[1]].clip +
@@ -119,7 +124,7 @@ float hand_over(float ratio) {
 // `start` (0 in a root cell, sub_cell_start() in a sub-cell); the rest continue in its four
 // sub-cells: local index own + d + 4 i' is point i' of sub-cell d.
 void visit(Traversal* s, const Cell& cell, uint64_t base, uint64_t stride, uint32_t start) {
-    if (base > 0xFFFFFFFFull) return;
+    if (base > 0xFFFFFFFFull || s->full()) return;
     const double count = cell_count(*s, cell) - s->phase;  // ranks k + phase <= count
     // Nothing here the size rule could draw; NaN (a pose gone non-finite) draws nothing too.
     if (!(count >= double(base))) return;
@@ -128,7 +133,7 @@ void visit(Traversal* s, const Cell& cell, uint64_t base, uint64_t stride, uint3
     const uint32_t n = fit >= double(own) ? own : uint32_t(fit);
     for (uint32_t i = 0; i < n; ++i) {
         const uint64_t k = base + stride * i;
-        if (k > 0xFFFFFFFFull) return;
+        if (k > 0xFFFFFFFFull || s->full()) return;
         emit(s, uint32_t(k), pattern_point(cell, s->variant, start + i));
     }
     if (n < own) return;
@@ -144,6 +149,7 @@ void visit(Traversal* s, const Cell& cell, uint64_t base, uint64_t stride, uint3
 // the view, or with nothing the size rule could draw, are skipped whole.
 void visit_roots(Traversal* s, const Cell& cell, uint32_t levels, uint64_t base, uint64_t stride) {
     if (levels == 0) return visit(s, cell, base, stride, 0);
+    if (s->full()) return;
     const double count = cell_count(*s, cell) - s->phase;
     if (!(count >= double(base))) return;  // also NaN
     visit_roots(s, bisect(cell, s->to_2d, 0), levels - 1, base, stride * 2);
@@ -356,18 +362,35 @@ void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positio
     s.focal2_over_dot = focal * focal / dot_area;
     s.out = out;
     // Once with every count whole; if the budget binds, again with every count scaled so the
-    // frame fits (each triangle keeps its coarsest extra points).
-    for (int pass = 0; pass < 2; ++pass) {
-        s.scale = 1.0f;
-        if (pass == 1) {
-            if (s.wanted <= out->capacity) break;
-            s.scale = 0.98f * float(out->capacity) / float(s.wanted);
-            out->count = 0;
-        }
-        if (stats && pass == 0) stats->wanted = 0;
-        s.wanted = 0;
+    // frame fits (each triangle keeps its coarsest extra points). A pass stops counting at
+    // kCountLimit budgets, or 4 times that of points generated or culled by the view (a hostile
+    // pose can make one triangle want 2^32 points; a close-up with a tenth of the budget it
+    // wants is ordinary): the next pass then scales by
+    // saturated_step, an underestimate of the need corrected by one pass from its count; at
+    // most kMaxPasses. So a frame's work is O(triangles + budget) whatever the pose, and a
+    // frame that asks for under kCountLimit budgets runs the two passes as before.
+    constexpr uint64_t kCountLimit = 16;
+    constexpr int kMaxPasses = 4;
+    const uint64_t capacity = out->capacity;
+    s.limit = std::max<uint64_t>(kCountLimit * capacity, 1024);
+    s.work_limit = 4 * s.limit;  // points culled by the view count too: they cost alike
+    const float saturated_step = 0.98f * float(capacity) / float(s.limit) / 16.0f;
+    s.scale = 1.0f;
+    bool from_count = false;  // the scale came from a whole count: that pass is the last
+    for (int pass = 0;; ++pass) {
+        out->count = 0;
+        s.wanted = s.work = 0;
         for (uint32_t t = 0; t < r->triangle_count; ++t) refine_one_triangle(r, &s, stretch, t);
         if (stats && pass == 0) stats->wanted = s.wanted;
+        const bool saturated = s.full();
+        if (from_count || pass + 1 == kMaxPasses || s.wanted == 0) break;
+        if (!saturated && pass == 0 && s.wanted <= capacity) break;
+        if (saturated) {
+            s.scale *= saturated_step;
+        } else {
+            s.scale *= 0.98f * float(capacity) / float(s.wanted);
+            from_count = true;
+        }
     }
     if (stats) {
         stats->generated = out->count;

@@ -51,15 +51,19 @@ void main() { o_color = vec4(u_paper.rgb, 1.0); }
 const char* kPointVs = R"(#version 300 es
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in float a_size;
+layout(location = 2) in vec4 a_colour;
 uniform mat4 u_view_projection;
 uniform highp sampler2D u_depth;
+uniform int u_see_through;
 out float v_radius;
 out float v_ink_scale;
+flat out vec3 v_colour;
 void cull() {
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: not rasterised
     gl_PointSize = 1.0;
     v_radius = 0.0;
     v_ink_scale = 0.0;
+    v_colour = vec3(0.0);
 }
 void main() {
     if (a_size <= 0.0) {
@@ -75,7 +79,8 @@ void main() {
         return;
     }
     float mesh = texelFetch(u_depth, pixel, 0).r;
-    if (mesh >= 1.0 || ndc.z * 0.5 + 0.5 > mesh + 1e-5) {  // off the object, or hidden
+    // Off the object (unless transparent parts let it through), or hidden.
+    if ((mesh >= 1.0 && u_see_through == 0) || ndc.z * 0.5 + 0.5 > mesh + 1e-5) {
         cull();
         return;
     }
@@ -84,6 +89,7 @@ void main() {
     v_radius = r;
     v_ink_scale = min(wanted / (r * r + 1.0 / 12.0), 1.0);
     gl_PointSize = 2.0 * r + 1.0;
+    v_colour = a_colour.rgb;
 }
 )";
 
@@ -91,13 +97,15 @@ const char* kPointFs = R"(#version 300 es
 precision highp float;
 in float v_radius;
 in float v_ink_scale;
+flat in vec3 v_colour;
 uniform vec4 u_ink;
+uniform int u_use_colour;
 layout(location = 0) out vec4 o_color;
 void main() {
     float d = length(gl_PointCoord - vec2(0.5)) * (2.0 * v_radius + 1.0);
     float coverage = clamp(v_radius + 0.5 - d, 0.0, 1.0) * v_ink_scale;
     if (coverage <= 0.0) discard;
-    o_color = vec4(u_ink.rgb, coverage);
+    o_color = vec4(u_use_colour == 1 ? v_colour : u_ink.rgb, coverage);
 }
 )";
 
@@ -149,6 +157,8 @@ void check_pass(Renderer* r, const char* pass) {
 
 // State shared by the passes that lay ink over the mesh pass: colour attachment only,
 // depth-tested against the (biased) mesh without writing depth, no blending.
+void set_dot_ink(Renderer* r, bool own_colours);
+
 void begin_ink_pass(Renderer* r, GLuint program, GLint vp, GLint ink,
                     const glm::mat4& view_projection) {
     const GlApi& gl = r->gl;
@@ -161,6 +171,26 @@ void begin_ink_pass(Renderer* r, GLuint program, GLint vp, GLint ink,
     gl.UseProgram(program);
     gl.UniformMatrix4fv(vp, 1, GL_FALSE, &view_projection[0][0]);
     gl.Uniform4f(ink, r->config.ink[0], r->config.ink[1], r->config.ink[2], 1.0f);
+    // Dots in the look's ink, GPU-path dots included (renderer_draw_points_from).
+    if (program == r->point_program) set_dot_ink(r, false);
+}
+
+// The dots' colour for r->look (after begin_ink_pass set the classic ink): the style's ink or
+// each dot's own colour, and whether dots off the opaque parts are drawn (transparent style).
+void set_dot_ink(Renderer* r, bool own_colours) {
+    const GlApi& gl = r->gl;
+    const RendererLook& look = r->look;
+    const float* fill = look.fill;
+    if (look.style == Style::colour) {
+        float rgb[3] = {fill[0], fill[1], fill[2]};
+        colour_dot_rgb(rgb);
+        gl.Uniform4f(r->point_ink, rgb[0], rgb[1], rgb[2], 1.0f);
+    }
+    if (look.style == Style::toon)
+        gl.Uniform4f(r->point_ink, fill[0] * look.toon_ink, fill[1] * look.toon_ink,
+                     fill[2] * look.toon_ink, 1.0f);
+    gl.Uniform1i(r->point_use_colour, own_colours ? 1 : 0);
+    gl.Uniform1i(r->point_see_through, look.style == Style::transparent ? 1 : 0);
 }
 
 // The offscreen framebuffer (colour, optional depth copy, depth texture) and the ink
@@ -214,6 +244,8 @@ Status create_programs(Renderer* r) {
     r->point_vp = gl.GetUniformLocation(r->point_program, "u_view_projection");
     r->point_ink = gl.GetUniformLocation(r->point_program, "u_ink");
     r->point_depth = gl.GetUniformLocation(r->point_program, "u_depth");
+    r->point_use_colour = gl.GetUniformLocation(r->point_program, "u_use_colour");
+    r->point_see_through = gl.GetUniformLocation(r->point_program, "u_see_through");
     r->line_vp = gl.GetUniformLocation(r->line_program, "u_view_projection");
     r->line_ink = gl.GetUniformLocation(r->line_program, "u_ink");
     return {};
@@ -270,7 +302,8 @@ void create_buffers(Renderer* r) {
 
     gl.GenVertexArrays(1, &r->line_vao);
     gl.BindVertexArray(r->line_vao);
-    r->line_vbo = dynamic_buffer(gl, 0, 3, size_t(config.max_lines) * 24);
+    r->line_vbo =
+        dynamic_buffer(gl, 0, 3, (size_t(config.max_lines) + size_t(config.max_creases)) * 24);
     gl.BindVertexArray(0);
 }
 
@@ -303,6 +336,9 @@ Status renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config)
     if (st.ok()) st = create_programs(r);
     if (st.ok()) {
         create_buffers(r);
+        st = renderer_init_looks(r);
+    }
+    if (st.ok()) {
         if (gl.desktop) {
             gl.Enable(0x8642);  // GL_PROGRAM_POINT_SIZE: desktop GL ignores gl_PointSize without it
             gl.Enable(0x8861);  // GL_POINT_SPRITE: gl_PointCoord in compatibility profiles
@@ -314,8 +350,7 @@ Status renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config)
     return st;
 }
 
-void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const float* positions,
-                        uint32_t vertex_count) {
+void renderer_clear_frame(Renderer* r) {
     const GlApi& gl = r->gl;
     const RendererConfig& c = r->config;
     gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
@@ -329,6 +364,13 @@ void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const flo
     if (c.depth_copy) gl.ClearBufferfv(GL_COLOR, 1, far_depth);
     gl.DepthMask(GL_TRUE);  // the points pass leaves depth writes off; glClear obeys the mask
     gl.Clear(GL_DEPTH_BUFFER_BIT);
+}
+
+void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const float* positions,
+                        uint32_t vertex_count) {
+    const GlApi& gl = r->gl;
+    const RendererConfig& c = r->config;
+    renderer_clear_frame(r);
     // Paper the colour of the background (the default): the clear already painted the body,
     // so the pass writes depth only (and the depth copy, which needs colour writes).
     const bool depth_only =
@@ -382,9 +424,16 @@ void renderer_begin_overlay(Renderer* r) {
 
 void renderer_draw_points(Renderer* r, const glm::mat4& view_projection, const float* positions,
                           const float* sizes, uint32_t point_count) {
+    renderer_draw_dots(r, view_projection, positions, sizes, nullptr, point_count);
+}
+
+void renderer_draw_dots(Renderer* r, const glm::mat4& view_projection, const float* positions,
+                        const float* sizes, const uint8_t* colours, uint32_t point_count) {
     const GlApi& gl = r->gl;
     gl.BindFramebuffer(GL_FRAMEBUFFER, r->ink_fbo);
     begin_ink_pass(r, r->point_program, r->point_vp, r->point_ink, view_projection);
+    const bool own_colours = colours && r->point_colour_vbo;
+    if (own_colours) gl.Uniform1i(r->point_use_colour, 1);
     gl.Disable(GL_DEPTH_TEST);  // each dot's visibility is tested at its centre (kPointVs)
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_2D, r->depth_tex);
@@ -396,7 +445,14 @@ void renderer_draw_points(Renderer* r, const glm::mat4& view_projection, const f
     gl.BufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(point_count) * 12), positions);
     gl.BindBuffer(GL_ARRAY_BUFFER, r->point_size_vbo);
     gl.BufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(point_count) * 4), sizes);
+    if (own_colours) {
+        gl.BindBuffer(GL_ARRAY_BUFFER, r->point_colour_vbo);
+        gl.BufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(point_count) * 4), colours);
+    }
     gl.DrawArrays(GL_POINTS, 0, GLsizei(point_count));
+    // Back to the classic uniforms: app frames (runtime/app_frame.cpp) draw with this program.
+    gl.Uniform1i(r->point_use_colour, 0);
+    gl.Uniform1i(r->point_see_through, 0);
     gl.BindVertexArray(0);
     gl.BindTexture(GL_TEXTURE_2D, 0);
     gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
@@ -405,8 +461,13 @@ void renderer_draw_points(Renderer* r, const glm::mat4& view_projection, const f
 
 void renderer_draw_lines(Renderer* r, const glm::mat4& view_projection, const float* lines,
                          uint32_t line_count) {
+    renderer_draw_line_sets(r, view_projection, lines, line_count, nullptr, 0);
+}
+
+void renderer_draw_line_sets(Renderer* r, const glm::mat4& view_projection, const float* lines,
+                             uint32_t line_count, const float* more, uint32_t more_count) {
     const GlApi& gl = r->gl;
-    if (line_count == 0) return;
+    if (line_count + more_count == 0) return;
     float range[2] = {1.0f, 1.0f};
     gl.GetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, range);
     float width = r->config.line_width;
@@ -414,8 +475,12 @@ void renderer_draw_lines(Renderer* r, const glm::mat4& view_projection, const fl
     begin_ink_pass(r, r->line_program, r->line_vp, r->line_ink, view_projection);
     gl.BindVertexArray(r->line_vao);
     gl.BindBuffer(GL_ARRAY_BUFFER, r->line_vbo);
-    gl.BufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(line_count) * 24), lines);
-    gl.DrawArrays(GL_LINES, 0, GLsizei(line_count * 2));
+    if (line_count > 0)
+        gl.BufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(line_count) * 24), lines);
+    if (more_count > 0)
+        gl.BufferSubData(GL_ARRAY_BUFFER, GLintptr(size_t(line_count) * 24),
+                         GLsizeiptr(size_t(more_count) * 24), more);
+    gl.DrawArrays(GL_LINES, 0, GLsizei((line_count + more_count) * 2));
     gl.BindVertexArray(0);
     check_pass(r, "lines");
 }
@@ -449,6 +514,7 @@ void renderer_read_depth(Renderer* r, float* scratch, float* depth) {
 void renderer_destroy(Renderer* r) {
     const GlApi& gl = r->gl;
     if (!gl.DeleteBuffers) return;
+    renderer_destroy_looks(r);
     GLuint buffers[5] = {r->mesh_vbo, r->mesh_ibo, r->point_pos_vbo, r->point_size_vbo,
                          r->line_vbo};
     gl.DeleteBuffers(5, buffers);
@@ -486,6 +552,26 @@ void renderer_blit_to_default(Renderer* r, int width, int height) {
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl.ReadBuffer(GL_BACK);
     check_pass(r, "blit");
+}
+
+void renderer_draw_points_from(Renderer* r, const glm::mat4& view_projection, GLuint vao,
+                               uint32_t point_count) {
+    const GlApi& gl = r->gl;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, r->ink_fbo);
+    begin_ink_pass(r, r->point_program, r->point_vp, r->point_ink, view_projection);
+    gl.Disable(GL_DEPTH_TEST);  // each dot's visibility is tested at its centre (kPointVs)
+    gl.ActiveTexture(GL_TEXTURE0);
+    gl.BindTexture(GL_TEXTURE_2D, r->depth_tex);
+    gl.Uniform1i(r->point_depth, 0);
+    gl.Enable(GL_BLEND);
+    gl.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    gl.BindVertexArray(vao);
+    gl.DrawArrays(GL_POINTS, 0, GLsizei(point_count));
+    gl.Uniform1i(r->point_see_through, 0);  // the classic uniforms again (looks: set_dot_ink)
+    gl.BindVertexArray(0);
+    gl.BindTexture(GL_TEXTURE_2D, 0);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+    check_pass(r, "dots");
 }
 
 }  // namespace stipple

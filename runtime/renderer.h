@@ -2,6 +2,8 @@
 // pass pushed slightly behind the surface, then every point is drawn as a round,
 // antialiased dot of its computed diameter, whole when its centre passes the depth test
 // against that pass (tested in the vertex shader on the depth texture), not at all otherwise.
+// Looks (runtime/style.h, renderer_draw_fill / renderer_draw_dots): a toon or opaque-parts-only
+// mesh pass, dots in their own colours, dots that see through transparent parts.
 // The mesh pass culls the back faces of single-sided triangles (double-sided ones are drawn
 // from both sides) and writes depth only when the paper is the background's colour.
 // All GL objects are created in renderer_init; drawing a frame creates nothing.
@@ -10,8 +12,10 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 
+#include "runtime/frame_config.h"
 #include "runtime/gl_api.h"
 #include "runtime/status.h"
+#include "runtime/style.h"
 
 namespace stipple {
 
@@ -44,6 +48,25 @@ struct RendererConfig {
     // it reports in Renderer::gl_errors (FrameConfig::check_gl_errors). Off by default: each
     // check is a driver round trip.
     bool check_errors = false;
+    // Looks (runtime/style.h, runtime/renderer_style.cpp). RGBA8 per vertex (StyleBuffers::
+    // vertex_colours: part colour, alpha 0 on transparent parts), uploaded once; nullptr: none.
+    const uint8_t* vertex_colours = nullptr;
+    bool part_colours = false;  // vertex_colours carry the parts' colours (toon fills with them)
+    bool dot_colours = false;   // a per-dot RGBA8 buffer (renderer_draw_dots' colours)
+    uint32_t max_creases = 0;   // crease lines drawn with the silhouettes (line buffer capacity)
+};
+
+// The look of the next frames (set by pipeline_set_camera from the resolved FrameConfig).
+struct RendererLook {
+    Style style = Style::classic;
+    int toon_bands = 3;
+    float toon_shade = 0.6f;  // level of the darkest toon band
+    float toon_ink = 0.4f;    // toon dots: the fill colour times this
+    float fill[3] = {1.0f, 1.0f, 1.0f};
+    bool transparent_parts = false;  // vertex alpha marks see-through parts (else all of it)
+    int light_count = 0;
+    float lights[kMaxLights][4] = {};  // toward the light (the mesh's space, unit), intensity
+    float ambient = 0.0f;
 };
 
 // GL errors seen by the checks (RendererConfig::check_errors) since renderer_init: how many,
@@ -72,6 +95,13 @@ struct Renderer {
     GLuint line_program = 0, line_vao = 0, line_vbo = 0;
     GLint line_vp = -1, line_ink = -1;
     GlErrorLog gl_errors;  // filled only when config.check_errors
+    // Looks (runtime/renderer_style.cpp): the styled mesh pass and its extra vertex buffers
+    // (normals at location 1, vertex colours at 2), dot colours (location 2 of point_vao).
+    RendererLook look;
+    GLuint style_program = 0, mesh_normal_vbo = 0, mesh_colour_vbo = 0, point_colour_vbo = 0;
+    GLint style_vp = -1, style_bias = -1, style_fill = -1, style_toon = -1, style_shade = -1,
+          style_lights = -1, style_light_count = -1, style_ambient = -1, style_cut = -1;
+    GLint point_use_colour = -1, point_see_through = -1;
 };
 
 // Creates the framebuffer, shaders and buffers. Fails with gl_error (incomplete framebuffer,
@@ -99,6 +129,32 @@ void renderer_begin_overlay(Renderer* r);
 // Draws `line_count` ink lines (6 floats each) depth-tested against the mesh pass.
 void renderer_draw_lines(Renderer* r, const glm::mat4& view_projection, const float* lines,
                          uint32_t line_count);
+// The same for two sets of lines in one draw (silhouettes, then crease lines, thesis §8.2);
+// the line buffer holds config.max_lines + config.max_creases.
+void renderer_draw_line_sets(Renderer* r, const glm::mat4& view_projection, const float* lines,
+                             uint32_t line_count, const float* more, uint32_t more_count);
+
+// Looks (runtime/style.h; runtime/renderer_style.cpp). The mesh pass of r->look.style: classic
+// is renderer_draw_mesh; toon fills with a band ramp of the look's lights over `normals`
+// (thesis §7.2); colour is classic's pass; transparent fills only the opaque parts (none
+// when no part is marked), so the dots and lines of the others see through (§7.4).
+void renderer_draw_fill(Renderer* r, const glm::mat4& view_projection, const float* positions,
+                        const float* normals, uint32_t vertex_count);
+// Dots as renderer_draw_points, in r->look's ink: one RGBA8 colour per dot (`colours`, needs
+// config.dot_colours) or the style's (classic, transparent: ink; colour: fill; toon: fill
+// times toon_ink). In the transparent style a dot is drawn where no opaque part hides it.
+void renderer_draw_dots(Renderer* r, const glm::mat4& view_projection, const float* positions,
+                        const float* sizes, const uint8_t* colours, uint32_t point_count);
+// Binds the offscreen framebuffer and clears its colour, depth copy and depth (the start of
+// every mesh pass).
+void renderer_clear_frame(Renderer* r);
+// Sets r->look from the resolved frame settings; `light_directions` (c.light_count of them)
+// are in the mesh's space, toward the light, unit (SizeParams::light_direction).
+void renderer_set_look(Renderer* r, const FrameConfig& c, const glm::vec3* light_directions,
+                       bool transparent_parts);
+// renderer_init's and renderer_destroy's part for the looks.
+[[nodiscard]] Status renderer_init_looks(Renderer* r);
+void renderer_destroy_looks(Renderer* r);
 
 // With RendererConfig::check_errors: calls glGetError and records what it reports after
 // `pass` in Renderer::gl_errors (for passes drawn outside this file: runtime/app_frame.cpp).
@@ -118,5 +174,11 @@ void renderer_read_depth(Renderer* r, float* scratch, float* depth);
 void renderer_blit_to_default(Renderer* r, int width, int height);
 
 void renderer_destroy(Renderer* r);
+
+// The dots pass (renderer_draw_points) over dots already on the GPU: `vao` binds attribute 0
+// (position, 3 floats) and 1 (diameter) from a buffer of `point_count` dots, e.g. the GPU
+// path's transform feedback output (runtime/gpu_stages.h). Dots of diameter 0 are culled.
+void renderer_draw_points_from(Renderer* r, const glm::mat4& view_projection, GLuint vao,
+                               uint32_t point_count);
 
 }  // namespace stipple

@@ -35,4 +35,19 @@ uint32_t silhouette_lines(const EdgesView& edges, const uint8_t* front, const fl
     return count;
 }
 
+uint32_t crease_lines(const LooksView& looks, const uint8_t* front, const float* positions,
+                      float* out_lines) {
+    uint32_t count = 0;
+    for (uint32_t i = 0; i < looks.crease_count; ++i) {
+        const uint32_t* e = looks.creases + size_t(i) * 4;
+        const bool f0 = front[e[2]];
+        const bool f1 = e[3] != format::kNoFace && front[e[3]];
+        if (!f0 && !f1) continue;  // both faces turned away: hidden behind the body
+        std::memcpy(out_lines + size_t(count) * 6, positions + size_t(e[0]) * 3, 12);
+        std::memcpy(out_lines + size_t(count) * 6 + 3, positions + size_t(e[1]) * 3, 12);
+        ++count;
+    }
+    return count;
+}
+
 }  // namespace stipple

@@ -18,4 +18,11 @@ void triangle_facing(uint32_t triangle_count, const uint32_t* indices, const flo
 uint32_t silhouette_lines(const EdgesView& edges, const uint8_t* front, const float* positions,
                           float* out_lines);
 
+// Crease lines (thesis §8.2: sharp edges drawn over the stipples to bring out shape; §7.1's
+// sharp edges where flat shading separates the light): every crease edge (LooksView::creases,
+// laid out like EdgesView::edges) with at least one adjacent face toward the eye, 6 floats per
+// line into `out_lines` (room for looks.crease_count lines); returns the number of lines.
+uint32_t crease_lines(const LooksView& looks, const uint8_t* front, const float* positions,
+                      float* out_lines);
+
 }  // namespace stipple

@@ -49,6 +49,21 @@ typedef enum stipple_stroke_quality {
 } stipple_stroke_quality;
 typedef void* (*stipple_get_proc_fn)(const char* name);
 
+/* stipple_player_desc.path */
+enum { STIPPLE_PATH_CPU = 0, STIPPLE_PATH_GPU = 1 };
+
+/* Looks (docs/styles.md): the same names as stipple-play --style (stipple_style_name). */
+typedef enum stipple_style {
+    STIPPLE_STYLE_CLASSIC = 0, /* black dots over white paper (thesis §3.2) */
+    STIPPLE_STYLE_TOON,        /* banded fill in the part/fill colour, darker dots (§7.2) */
+    STIPPLE_STYLE_COLOUR,      /* dots in the surface colour over the paper (§8.6) */
+    STIPPLE_STYLE_TRANSPARENT  /* transparent parts draw only dots and lines (§7.4) */
+} stipple_style;
+/* "classic", "toon", "colour", "transparent"; NULL outside the enum. */
+const char* stipple_style_name(int style);
+/* The stipple_style named `name`, or -1. */
+int stipple_find_style(const char* name);
+
 /* Defaults and limits come from one table (runtime/frame_config.h, kFrameSettings); a value
  * outside its range makes stipple_player_create and stipple_player_desc_resolve return
  * STIPPLE_ERROR_INVALID_ARGUMENT. */
@@ -85,6 +100,27 @@ typedef struct stipple_player_desc {
     int stroke_vertex_budget;     /* tessellated vertices per frame, in [1024, 8388608]; 0:
                                      262144 (48 bytes each, taken only if the asset has
                                      strokes) */
+    int path;                     /* where place, relevance and size run: 0 (STIPPLE_PATH_CPU,
+                                     the default) or 1 (STIPPLE_PATH_GPU: a GLES 3 vertex shader
+                                     with transform feedback, docs/gpu-path.md) */
+    int path_reserved;            /* 0 (keeps the struct free of padding) */
+    int style;                    /* stipple_style (docs/styles.md); 0: STIPPLE_STYLE_CLASSIC;
+                                     or a particle style (stipple_find_style("ink"),
+                                     stipple_register_style; docs/particles.md) */
+    int toon_bands;               /* toon ramp bands, 2 or 3; 0: 3 */
+    uint32_t fill_rgb;            /* 0xRRGGBB: toon fill, colour dots without LOOK colours;
+                                     used only when fill_set */
+    int fill_set;                 /* 0: 0x8CCC59 */
+    float toon_ink;               /* toon dots: fill colour times this, in (0, 1]; 0: 0.4,
+                                     < 0: black */
+    float tone_gamma;             /* tone curve T -> T^gamma before the size rule, in [0.1, 10]
+                                     (> 1 lighter); 0: 1 */
+    float tone_contrast;          /* then 0.5 + (T - 0.5) contrast, in [0.1, 10]; 0: 1 */
+    int no_creases;               /* 1: no crease lines (the asset's LOOK, thesis §8.2) */
+    int no_lod;                   /* 1: run place, relevance and size on every point; 0: only on
+                                     the point clusters in view and front-facing, cut where no
+                                     dot can draw (same dots, docs/lod.md) */
+    int lod_reserved;             /* 0 (keeps the struct free of padding) */
     /* Memory: everything a player takes, taken at create. Either an allocator hook (allocate
      * and release with allocator_user; allocate returns 16-byte aligned memory or NULL), or
      * one block (memory, memory_size) of at least stipple_player_memory_bytes() bytes, 16-byte
@@ -239,6 +275,11 @@ stipple_result stipple_player_set_silhouettes(stipple_player* player, int on, fl
 stipple_result stipple_player_set_tone(stipple_player* player, int use_constant_tone, float tone,
                                        float max_point_size);
 
+/* The look between frames: style (stipple_style), the tone curve (gamma, contrast in [0.1, 10];
+ * 1, 1: none) and crease lines on or off. */
+stipple_result stipple_player_set_style(stipple_player* player, int style, float tone_gamma,
+                                        float tone_contrast, int creases);
+
 /* width * height * 4 bytes, bottom row first (GL order). */
 void stipple_player_read_rgba(stipple_player* player, uint8_t* rgba);
 uint32_t stipple_player_points_drawn(const stipple_player* player);
@@ -250,6 +291,72 @@ uint32_t stipple_player_stroke_triangles(const stipple_player* player);
  * the pass of the first one. */
 uint32_t stipple_player_gl_errors(const stipple_player* player);
 void stipple_player_destroy(stipple_player* player);
+
+/* ---- View-dependent particles (GI'01; docs/particles.md) ----------------------------------
+ * Besides the stipple looks, stipple_player_desc.style may name a particle style: strokes at
+ * the particles of the point hierarchy, folded and unfolded every frame to hold a density on
+ * screen. The built-in ones follow the paper: "painterly-long", "painterly-dab", "sketch",
+ * "cartoon", "graftals", "charcoal", "two-tone", "ink" (stipple_find_style gives their
+ * numbers). A user style starts from a built-in one and may replace two of its stages with
+ * callbacks; it is registered once, before creating the players that use it. */
+
+/* One frame's particles as the callbacks see them, structure of arrays (count entries each). */
+typedef struct stipple_particles {
+    uint32_t count;
+    const uint32_t* id; /* the particle: a point of the hierarchy, coarse first */
+    const float* x;     /* pixels, origin top-left */
+    const float* y;
+    const float* depth;          /* window depth in [0, 1]; > 1: behind the camera */
+    const float* radius_px;      /* relevance radius on screen; children are half this apart */
+    const float* intensity;      /* lighting in [0, 1] */
+    const float* facing;         /* N.V: 1 facing the viewer, 0 on the silhouette, < 0 away */
+    const float* angle;          /* the style's orientation field on screen, radians */
+    const float* foreshortening; /* 1: the field lies in the image plane, 0: points at the eye */
+    const float* alpha;          /* fade in [0, 1] (stage 1's joins and folds, back faces) */
+    const uint8_t* unfolded;     /* adjust only: 1 if the particle is unfolded now */
+} stipple_particles;
+
+/* Brushes of a stroke (generated by code: docs/particles.md). */
+enum {
+    STIPPLE_BRUSH_LONG_THIN = 0,
+    STIPPLE_BRUSH_ROUND_DAB = 1,
+    STIPPLE_BRUSH_CRAYON = 2,
+    STIPPLE_BRUSH_GRAFTAL = 3,
+    STIPPLE_BRUSH_SOLID = 4
+};
+
+/* One stroke: a quad of length x width pixels at (x, y), turned by angle, textured with the
+ * brush, in colour (fill: a graftal's inside), drawn whole if its centre passes the depth test. */
+typedef struct stipple_stroke {
+    float x, y, depth, angle; /* pixels (origin top-left), window depth, radians */
+    float length, width;      /* pixels */
+    float brush;              /* STIPPLE_BRUSH_* */
+    float alpha;              /* opacity in [0, 1] */
+    uint8_t rgba[4];          /* colour (alpha unused) */
+    uint8_t fill[4];          /* graftal fill (alpha unused) */
+} stipple_stroke;
+
+/* Stage 1: write unfold[k] = 1 to show particle k's children this frame, 0 to fold them. */
+typedef void (*stipple_adjust_fn)(const stipple_particles* particles, uint8_t* unfold, void* user);
+/* Stage 4: write at most `capacity` strokes and the id of each one's particle; return the
+ * count. */
+typedef uint32_t (*stipple_strokes_fn)(const stipple_particles* particles, stipple_stroke* out,
+                                       uint32_t* out_id, uint32_t capacity, void* user);
+
+typedef struct stipple_style_desc {
+    const char* name;           /* 1-31 characters of [a-z0-9_-], not taken */
+    const char* base;           /* the built-in style it starts from; NULL: "painterly-long" */
+    stipple_adjust_fn adjust;   /* NULL: the base's criterion (density, silhouettes) */
+    stipple_strokes_fn strokes; /* NULL: the base's strokes */
+    void* user;                 /* passed to both */
+    float spacing_px;           /* stage 1's density target in pixels; 0: the base's */
+    int fade_frames;            /* frames a fade takes, in [1, 255]; 0: the base's */
+} stipple_style_desc;
+
+/* Registers a particle style; returns its style number for stipple_player_desc.style and
+ * stipple_player_set_style, or -1 (bad or taken name, unknown base, a value out of range, or
+ * 16 styles already registered; stipple_last_error says which). Not thread-safe. */
+int stipple_register_style(const stipple_style_desc* desc);
 
 #ifdef __cplusplus
 }

@@ -8,9 +8,11 @@
 
 #include "runtime/app_frame.h"
 #include "runtime/asset.h"
+#include "runtime/c_api_internal.h"
 #include "runtime/camera.h"
 #include "runtime/frame_pipeline.h"
 #include "runtime/memory.h"
+#include "runtime/particle_style.h"
 #include "runtime/stipple.h"
 
 struct stipple_asset {
@@ -54,6 +56,14 @@ stipple_result fail(stipple_result result, const char* message) {
     log_message(2, g_error);
     return result;
 }
+
+}  // namespace
+
+stipple_result stipple::c_api_fail(stipple_result result, const char* message) {
+    return fail(result, message);
+}
+
+namespace {
 
 stipple_result from_status(const stipple::Status& st) {
     if (st.ok()) return STIPPLE_OK;
@@ -103,6 +113,40 @@ stipple::LoadOptions load_options_of(const stipple_load_desc* desc) {
     return options;
 }
 
+// The looks' fields of the description (runtime/style.h); an unknown style fails the check.
+void look_config_of(const stipple_player_desc& d, stipple::FrameConfig* c) {
+    c->style = stipple::Style(d.style);
+    // Past the stipple looks: the particle styles (docs/particles.md), built-in then registered.
+    const int particle = d.style - stipple::kStyleTotal;
+    if (particle >= 0 && particle < stipple::particle_style_count()) {
+        c->style = stipple::Style::classic;
+        c->particle_style = &stipple::particle_style_at(particle);
+    }
+    c->toon_bands = d.toon_bands;
+    if (d.fill_set)
+        for (int k = 0; k < 3; ++k)
+            c->fill[k] = float((d.fill_rgb >> (16 - 8 * k)) & 0xFF) / 255.0f;
+    if (d.toon_ink != 0.0f) c->toon_ink = d.toon_ink < 0.0f ? 0.0f : d.toon_ink;
+    c->tone_gamma = d.tone_gamma;
+    c->tone_contrast = d.tone_contrast;
+    c->creases = !d.no_creases;
+}
+
+void look_desc_of(const stipple::FrameConfig& c, stipple_player_desc* d) {
+    d->style = c.particle_style
+                   ? stipple::kStyleTotal + stipple::particle_style_index(c.particle_style)
+                   : int(c.style);
+    d->toon_bands = c.toon_bands;
+    d->fill_rgb = 0;
+    for (int k = 0; k < 3; ++k)
+        d->fill_rgb |= uint32_t(std::lround(c.fill[k] * 255.0f)) << (16 - 8 * k);
+    d->fill_set = 1;
+    d->toon_ink = c.toon_ink > 0.0f ? c.toon_ink : -1.0f;
+    d->tone_gamma = c.tone_gamma;
+    d->tone_contrast = c.tone_contrast;
+    d->no_creases = !c.creases;
+}
+
 // The description as frame settings: a zero field keeps FrameConfig's default (the table in
 // runtime/frame_config.h); resolve_frame_config then fills zero sizes and checks limits.
 stipple::FrameConfig frame_config_of(const stipple_player_desc& d) {
@@ -115,6 +159,7 @@ stipple::FrameConfig frame_config_of(const stipple_player_desc& d) {
     c.constant_tone = d.use_constant_tone ? d.constant_tone : stipple::kLightingTone;
     c.max_point_size = d.max_point_size;
     c.relevance_update = !d.no_relevance_update;
+    c.lod = !d.no_lod;
     if (d.dark_tone_set) c.dark_tone = d.dark_tone;
     if (d.refinement_budget < 0) c.refinement_budget = 0;
     if (d.refinement_budget > 0) c.refinement_budget = uint32_t(d.refinement_budget);
@@ -133,10 +178,16 @@ stipple::FrameConfig frame_config_of(const stipple_player_desc& d) {
     c.stroke_lod_px = d.stroke_lod_px;
     if (d.stroke_nudge != 0.0f) c.stroke_nudge = d.stroke_nudge < 0.0f ? 0.0f : d.stroke_nudge;
     c.stroke_vertex_budget = d.stroke_vertex_budget < 0 ? 1u : uint32_t(d.stroke_vertex_budget);
+    look_config_of(d, &c);
+    // An unknown path maps outside the enum and fails resolve_frame_config's check.
+    c.path = d.path == STIPPLE_PATH_GPU
+                 ? stipple::FramePath::gpu
+                 : (d.path == STIPPLE_PATH_CPU ? stipple::FramePath::cpu : stipple::FramePath(99));
     return c;
 }
 
 // Clip `clip` at `time`, layered with clip2 at time2 by weight2 clamped to [0, 1].
+// (look_config_of and look_desc_of are above frame_config_of.)
 stipple::AnimationState animation_state(int clip, float time, int clip2, float time2,
                                         float weight2) {
     stipple::AnimationState state;
@@ -195,6 +246,7 @@ void desc_of(const stipple::FrameConfig& c, stipple_player_desc* d) {
     d->constant_tone = d->use_constant_tone ? c.constant_tone : 0.0f;
     d->max_point_size = c.max_point_size;
     d->no_relevance_update = !c.relevance_update;
+    d->no_lod = !c.lod;
     d->no_silhouettes = !c.silhouettes;
     d->dual_quaternion_skinning = c.skinning == stipple::anim::Skinning::dqs;
     d->dark_tone_set = 1;
@@ -212,6 +264,8 @@ void desc_of(const stipple::FrameConfig& c, stipple_player_desc* d) {
     d->stroke_lod_px = c.stroke_lod_px;
     d->stroke_nudge = c.stroke_nudge > 0.0f ? c.stroke_nudge : -1.0f;
     d->stroke_vertex_budget = int(c.stroke_vertex_budget);
+    look_desc_of(c, d);
+    d->path = c.path == stipple::FramePath::gpu ? STIPPLE_PATH_GPU : STIPPLE_PATH_CPU;
 }
 
 }  // namespace
@@ -408,6 +462,36 @@ stipple_result stipple_player_set_tone(stipple_player* p, int use_constant_tone,
     stipple::FrameConfig c = p->pipeline.config;
     c.constant_tone = use_constant_tone ? tone : stipple::kLightingTone;
     if (max_point_size != 0.0f) c.max_point_size = max_point_size;
+    return set_view(p, c);
+}
+
+const char* stipple_style_name(int style) {
+    if (style >= 0 && style < stipple::kStyleTotal)
+        return stipple::style_name(stipple::Style(style));
+    const int particle = style - stipple::kStyleTotal;
+    return particle >= 0 && particle < stipple::particle_style_count()
+               ? stipple::particle_style_at(particle).name
+               : nullptr;
+}
+
+int stipple_find_style(const char* name) {
+    const int look = stipple::find_style(name);
+    if (look >= 0) return look;
+    const int particle = stipple::particle_style_index(stipple::find_particle_style(name));
+    return particle >= 0 ? stipple::kStyleTotal + particle : -1;
+}
+
+stipple_result stipple_player_set_style(stipple_player* p, int style, float tone_gamma,
+                                        float tone_contrast, int creases) {
+    if (!p) return fail(STIPPLE_ERROR_INVALID_ARGUMENT, "NULL argument");
+    stipple::FrameConfig c = p->pipeline.config;
+    if (style >= stipple::kStyleTotal || c.particle_style)
+        return fail(STIPPLE_ERROR_INVALID_ARGUMENT,
+                    "particle styles are chosen at stipple_player_create");
+    c.style = stipple::Style(style);
+    c.tone_gamma = tone_gamma;
+    c.tone_contrast = tone_contrast;
+    c.creases = creases != 0;
     return set_view(p, c);
 }
 

@@ -25,6 +25,10 @@ struct SizeParams {
     // Target tone where N.L <= 0: the darkest tone lighting asks for (thesis §8.4's limit).
     float dark_tone = kFrameSettings.dark_tone.fallback;
     float light_tone = 0.0f;  // target tone where N.L = 1
+    // Tone curve (FrameConfig::tone_gamma, tone_contrast): T -> 0.5 + (T^gamma - 0.5) contrast,
+    // clamped to [0, 1], on the target tone before the size rule; 1, 1 leaves T untouched.
+    float tone_gamma = kFrameSettings.tone_gamma.fallback;
+    float tone_contrast = kFrameSettings.tone_contrast.fallback;
     // Dots overlap as tone rises, so ink laid down is not darkness seen. Ink asked for tone T
     // is T (1 + overlap_gain T^overlap_power): 2% more at 0.3, 12% at 0.6, 35% at 0.9, 46% at
     // 1 (overlap_gain 0 turns it off). Fitted to tone measured over the corpus at zoom 0.25 to
@@ -45,8 +49,13 @@ inline float lighting(const SizeParams& params, const glm::vec3& n) {
 // Pixels per world unit at clip depth w is focal / w.
 float focal_pixels(const SizeParams& params);
 
+// The tone curve of `params` applied to a target tone in [0, 1] (gamma > 1 lightens, contrast
+// > 1 spreads tones away from 0.5); exactly `tone` for the identity curve.
+float tone_curve(const SizeParams& params, float tone);
+
 // Ink (summed dot area per screen area) the size rule must lay down for tone T in [0, 1]:
-// overlap correction, then the smooth-slope ink fraction (see smooth_slope_ink_fraction).
+// the tone curve, overlap correction, then the smooth-slope ink fraction (see
+// smooth_slope_ink_fraction).
 float ink_for_tone(const SizeParams& params, float tone);
 
 // Ink as a function of N.L in [0, 1] (constant when the tone is), tabulated once per frame so
@@ -93,5 +102,11 @@ inline float smooth_point_size(float target_tone, float region_px, float max_poi
 // Alg. 3.2. Back-facing points get size 0.
 void size_stipples(uint32_t count, const float* positions, const float* normals,
                    const float* radius, const SizeParams& params, float* out_size);
+
+// size_stipples for the points list[0 .. list_count) only (level of detail,
+// runtime/point_clusters.h); the others' sizes are left as they were.
+void size_listed_stipples(const uint32_t* list, uint32_t list_count, const float* positions,
+                          const float* normals, const float* radius, const SizeParams& params,
+                          float* out_size);
 
 }  // namespace stipple

@@ -6,6 +6,8 @@
 #                  at run time keeps the tone (docs/tone.md)
 #   fur_anim.png   CesiumMan with 3,000 paintstroke hairs walking (320x240, 30 frames; GI'98)
 #   torus.png      the sketch's torus of 1,250 strokes (320x240)
+#   style_*.png    the looks of docs/styles.md (240x180)
+#   particles_*.png  the particle styles of docs/particles.md (320x240) and a walk (240x180)
 #   three_walkers.png  examples/three_walkers' frame (built against an install of build/)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -34,6 +36,34 @@ cp "$TMP/fur/anim.png" "$OUT/fur_anim.png"
 "$BIN/stipple-play" "$TMP/torus.stip" --out "$TMP/torus" --frames 1 --size 320x240 --pitch 35 \
     --no-apng
 cp "$TMP/torus/frame_0000.png" "$OUT/torus.png"
+# The looks (docs/styles.md): style_classic.png ... style_transparent.png (240x180).
+"$BIN/stipple-bake" assets/CesiumMan/CesiumMan.glb -o "$TMP/man30k.stip" --points 30000 --quiet
+for style in classic toon colour transparent; do
+    "$BIN/stipple-play" "$TMP/man30k.stip" --out "$TMP/style_$style" --frames 1 --size 240x180 \
+        --yaw -60 --time 0.66 --style "$style" --no-apng
+    cp "$TMP/style_$style/frame_0000.png" "$OUT/style_$style.png"
+done
+"$BIN/stipple-bake" assets/looks/looks_scene.gltf -o "$TMP/scene.stip" --points 20000 --looks --quiet
+for style in toon colour transparent; do
+    "$BIN/stipple-play" "$TMP/scene.stip" --out "$TMP/scene_$style" --frames 1 --size 240x180 \
+        --pitch 20 --style "$style" --no-apng
+    cp "$TMP/scene_$style/frame_0000.png" "$OUT/style_scene_$style.png"
+done
+"$BIN/stipple-bake" assets/CesiumMan/CesiumMan.glb -o "$TMP/man_looks.stip" --points 30000 --looks \
+    --quiet
+"$BIN/stipple-play" "$TMP/man_looks.stip" --out "$TMP/man_colour" --frames 1 --size 240x180 \
+    --yaw -60 --time 0.66 --style colour --no-apng
+cp "$TMP/man_colour/frame_0000.png" "$OUT/style_looks_colour.png"
+# View-dependent particles (docs/particles.md): particles_*.png, the eight GI'01 styles
+# (320x240), and particles_anim.png, painterly-long walking (240x180, 30 frames).
+for style in painterly-long painterly-dab sketch cartoon graftals charcoal two-tone ink; do
+    "$BIN/stipple-play" "$TMP/man30k.stip" --out "$TMP/particles_$style" --frames 1 \
+        --size 320x240 --yaw -60 --time 0.66 --zoom 1.6 --style "$style" --no-apng
+    cp "$TMP/particles_$style/frame_0000.png" "$OUT/particles_$style.png"
+done
+"$BIN/stipple-play" "$TMP/man30k.stip" --out "$TMP/particles_anim" --frames 30 --fps 30 \
+    --size 240x180 --yaw -60 --zoom 1.4 --style painterly-long --no-png
+cp "$TMP/particles_anim/anim.png" "$OUT/particles_anim.png"
 cmake --install build --prefix "$TMP/prefix" > /dev/null
 cmake -S examples/three_walkers -B "$TMP/example" -DCMAKE_PREFIX_PATH="$TMP/prefix" \
     -DCMAKE_BUILD_TYPE=Release > /dev/null

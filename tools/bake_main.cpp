@@ -2,12 +2,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "bake/asset_writer.h"
 #include "bake/atomic_file.h"
@@ -16,6 +18,7 @@
 #include "bake/scene_import.h"
 #include "bake/scene_orientation.h"
 #include "bake/stroke_json.h"
+#include "bake/surface_looks.h"
 #include "bake/vertex_normals.h"
 #include "runtime/asset.h"
 #include "runtime/asset_format.h"
@@ -59,6 +62,14 @@ const char* kUsage =
     "  --fur-curl C     twist of the bend around the normal, radians per object unit, in\n"
     "                   [-1000000, 1000000] (default 0)\n"
     "  --strokes F      paintstrokes from a JSON file (docs/strokes.md), after any fur\n"
+    "  --looks          write the LOOK section (docs/format.md): each point's material colour\n"
+    "                   (glTF base colour factor times its texture and COLOR_0; PLY/OBJ\n"
+    "                   vertex colours), the parts (one per material) with their\n"
+    "                   transparency, and crease edges (faces meeting at more than --crease\n"
+    "                   degrees). Default off: the asset has no LOOK section\n"
+    "  --transparent N[,N...]  glTF materials or meshes drawn by stipples only (no fill),\n"
+    "                   besides alphaMode BLEND materials; implies --looks. An unknown name\n"
+    "                   is an error\n"
     "  --quiet          no warnings and no summary; the progress bar (on stderr, for bakes over\n"
     "                   a second) shows only when stderr is a terminal (default off)\n"
     "  -h, --help       this text\n";
@@ -76,6 +87,8 @@ struct Options {
     stipple::bake::FurConfig fur;
     bool fur_options = false;  // any --fur-* given
     std::string strokes;
+    bool looks = false;
+    std::vector<std::string> transparent;
 };
 
 stipple::cli::Parser g_parser("stipple-bake", kUsage);
@@ -125,6 +138,20 @@ void add_stroke_options(stipple::cli::Parser& p, Options* o) {
         .text("--strokes", &o->strokes);
 }
 
+// --looks, --transparent NAME[,NAME...].
+void add_look_options(stipple::cli::Parser& p, Options* o) {
+    p.flag("--looks", &o->looks)
+        .custom("--transparent", [&p, o](const std::string& name, const std::string& v) {
+            size_t at = 0;
+            while (at <= v.size()) {
+                const size_t comma = std::min(v.find(',', at), v.size());
+                if (comma == at) p.bad_value(name, "material or mesh names, comma-separated", v);
+                o->transparent.push_back(v.substr(at, comma - at));
+                at = comma + 1;
+            }
+        });
+}
+
 Options parse(int argc, char** argv) {
     using Sides = Options::Sides;
     Options o;
@@ -161,7 +188,9 @@ Options parse(int argc, char** argv) {
                 })
         .flag("--quiet", &o.quiet);
     add_stroke_options(p, &o);
+    add_look_options(p, &o);
     p.parse(argc, argv);
+    if (!o.transparent.empty()) o.looks = true;
     if (o.fur_options && o.fur.count == 0)
         die("--fur-length, --fur-radius, --fur-comb and --fur-curl need --fur N");
     if (o.input.empty()) die("no input file (see --help)");
@@ -260,6 +289,17 @@ void print_summary(const Options& o, const stipple::bake::RawScene& scene,
     j["up"] = o.up_axis == stipple::format::kUpZ ? "z" : "y";
     j["double_sided_triangles"] = check.sides.triangle_count;
     j["bytes_per_point"] = fixed(double(point_bytes) / n, 2);
+    if (check.section_size[stipple::kSectionLooks] > 0) {
+        const stipple::LooksView& l = check.looks;
+        uint32_t transparent = 0;
+        for (uint32_t i = 0; i < l.part_count; ++i)
+            transparent += (l.part_flags[i] & stipple::kPartTransparent) ? 1 : 0;
+        j["parts"] = l.part_count;
+        j["transparent_parts"] = transparent;
+        j["coloured_points"] = l.point_colour ? check.points.point_count : 0u;
+        j["creases"] = l.crease_count;
+        j["look_bytes"] = check.section_size[stipple::kSectionLooks];
+    }
     if (check.strokes.stroke_count > 0) {
         j["strokes"] = check.strokes.stroke_count;
         j["stroke_points"] = check.strokes.point_count;
@@ -273,7 +313,10 @@ void print_summary(const Options& o, const stipple::bake::RawScene& scene,
 stipple::bake::RawScene import(const Options& o) {
     using namespace stipple::bake;
     RawScene scene;
-    const BakeError imported = import_scene(o.input, &scene);
+    ImportOptions options;
+    options.looks = o.looks;
+    options.transparent = o.transparent;
+    const BakeError imported = import_scene(o.input, &scene, options);
     if (!imported.ok()) die(imported.message);
     apply_up_axis(o.up_axis, &scene);
     if (o.double_sided == Options::Sides::on) scene.double_sided.assign(scene.triangle_count(), 1);
@@ -356,7 +399,9 @@ int main(int argc, char** argv) {
     const BakedStrokes strokes = all_strokes(o, scene, points, explicit_strokes);
 
     on_progress("encode", 0, &progress);
-    const std::vector<uint8_t> bytes = encode_asset(scene, points, strokes);
+    BakedLooks looks;
+    if (o.looks) looks = bake_looks(scene, points, LooksConfig{true, o.normals.crease_degrees});
+    const std::vector<uint8_t> bytes = encode_asset(scene, points, strokes, looks);
     on_progress("verify", 0, &progress);
     // Read the asset back with the runtime's validating loader before writing it, so a
     // bake never leaves an asset the runtime would refuse.

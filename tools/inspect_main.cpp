@@ -101,13 +101,28 @@ Json strokes(const stipple::Asset& a) {
     return j;
 }
 
+// Looks (LOOK): parts, transparent parts, coloured points, crease edges.
+Json looks(const stipple::Asset& a) {
+    const stipple::LooksView& v = a.looks;
+    uint32_t transparent = 0;
+    for (uint32_t i = 0; i < v.part_count; ++i)
+        transparent += (v.part_flags[i] & stipple::kPartTransparent) ? 1 : 0;
+    Json j;
+    j["parts"] = v.part_count;
+    j["transparent_parts"] = transparent;
+    j["coloured_points"] = v.point_colour ? a.points.point_count : 0u;
+    j["creases"] = v.crease_count;
+    j["bytes"] = a.section_size[stipple::kSectionLooks];
+    return j;
+}
+
 // Counts and sizes of the asset's sections.
 Json contents(const std::string& path, const stipple::Asset& a) {
     const stipple::PointsView& p = a.points;
     size_t mesh_side = 0;
     for (int s : {stipple::kSectionMesh, stipple::kSectionSkin, stipple::kSectionClips,
                   stipple::kSectionEdges, stipple::kSectionMorph, stipple::kSectionBounds,
-                  stipple::kSectionSides, stipple::kSectionStrokes})
+                  stipple::kSectionSides, stipple::kSectionStrokes, stipple::kSectionLooks})
         mesh_side += a.section_size[s];
     Json j;
     j["asset"] = path;
@@ -132,6 +147,7 @@ Json contents(const std::string& path, const stipple::Asset& a) {
     j["double_sided_triangles"] = a.sides.triangle_count;
     if (a.bounds.present) j["bounds"] = bounds(a);
     if (a.strokes.stroke_count > 0) j["strokes"] = strokes(a);
+    if (a.section_size[stipple::kSectionLooks] > 0) j["looks"] = looks(a);
     return j;
 }
 

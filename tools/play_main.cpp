@@ -17,210 +17,17 @@
 #include "tools/cli_options.h"
 #include "tools/image_write.h"
 #include "tools/json_line.h"
+#include "tools/play_options.h"
 #include "tools/play_outputs.h"
 #include "tools/play_usage.h"
 #include "tools/play_window.h"
 
 namespace {
 
-// Frame-setting defaults and ranges in the help text come from the one table
-// (runtime/frame_config.h) and the resolved zero config, never from literals here.
-const stipple::FrameSettings& kLimits = stipple::kFrameSettings;
-const stipple::FrameConfig kDefaults = stipple::default_frame_config();
-
-struct Options {
-    std::string asset, out, clip, backend, second_clip;
-    enum class Mix { none, blend, crossfade } mix = Mix::none;
-    double mix_amount = 0;  // blend weight, or crossfade seconds
-    bool dqs = false;
-    long frames = 30;
-    double fps = 30, time0 = 0;
-    // Frame settings start at the resolved zero config (runtime/frame_config.h).
-    double zoom = kDefaults.zoom, yaw = kDefaults.yaw_degrees, pitch = kDefaults.pitch_degrees;
-    double tone = kDefaults.constant_tone, point_size = kDefaults.max_point_size;
-    double dark_tone = kDefaults.dark_tone;
-    double zoom_to = 0;    // > 0: zoom moves geometrically from `zoom` to this over the frames
-    long zoom_period = 0;  // > 0: ... and back, every zoom_period frames
-    long refinement_budget = long(kDefaults.refinement_budget);
-    int width = kDefaults.width, height = kDefaults.height;
-    float background[3] = {kDefaults.background[0], kDefaults.background[1],
-                           kDefaults.background[2]};
-    double line_width = kDefaults.line_width;
-    bool silhouettes = kDefaults.silhouettes;
-    bool relevance_update = kDefaults.relevance_update;
-    bool dots_out = false, png = true, apng = true, stats = false;
-    bool mask_out = false;
-    bool check_gl = false;
-    bool strokes = kDefaults.strokes, roots_out = false;
-    int stroke_quality = kDefaults.stroke_quality;
-    double stroke_tol_theta = kDefaults.stroke_tol_theta, stroke_tol_z = kDefaults.stroke_tol_z;
-    double stroke_lod = kDefaults.stroke_lod_px;
-    long stroke_budget = long(kDefaults.stroke_vertex_budget);
-    int light_count = -1;  // -1: the default list
-    stipple::Light lights[stipple::kMaxLights];
-    bool world_lights = false;
-    double ambient = kDefaults.ambient;
-    long rss_every = 0;                // > 0: DIR/rss.csv gets a row every rss_every frames
-    stipple::play::WindowOptions win;  // --window (tools/play_window.h)
-    bool frames_given = false;         // a window runs until Esc without --frames
-};
-
-const std::string kUsage = stipple::play::usage();
-stipple::cli::Parser g_parser("stipple-play", kUsage.c_str());
-
-[[noreturn]] void die(const std::string& message) {
-    g_parser.fail(message);
-}
-
-// --blend CLIP2:W and --crossfade CLIP2:S.
-void parse_mix(const std::string& option, const std::string& v, Options* o) {
-    const bool blend = option == "--blend";
-    const size_t colon = v.rfind(':');
-    if (colon == std::string::npos || colon == 0)
-        die(option + " takes CLIP:" + (blend ? "WEIGHT" : "SECONDS") + ", got '" + v + "'");
-    o->second_clip = v.substr(0, colon);
-    o->mix = blend ? Options::Mix::blend : Options::Mix::crossfade;
-    o->mix_amount =
-        blend ? g_parser.number_value(option + " weight", v.substr(colon + 1), 0, 1)
-              : g_parser.number_value(option + " seconds", v.substr(colon + 1), 0.001, 1e4);
-}
-
-// --stroke-tolerance THETA[,Z]: GI'98 tol_theta and tol_z in pixels (Z defaults to half THETA).
-void parse_tolerance(const std::string& option, const std::string& v, Options* o) {
-    const stipple::Setting<float>& t = kLimits.stroke_tol_theta;
-    const size_t comma = v.find(',');
-    o->stroke_tol_theta =
-        g_parser.number_value(option + " tol_theta", v.substr(0, comma), t.min, t.max);
-    o->stroke_tol_z =
-        comma == std::string::npos
-            ? std::max(0.5 * o->stroke_tol_theta, double(t.min))
-            : g_parser.number_value(option + " tol_z", v.substr(comma + 1),
-                                    kLimits.stroke_tol_z.min, kLimits.stroke_tol_z.max);
-}
-
-// --light X,Y,Z[,I], up to kMaxLights times.
-void parse_light(const std::string& option, const std::string& v, Options* o) {
-    if (o->light_count < 0) o->light_count = 0;
-    if (o->light_count == stipple::kMaxLights)
-        die(option + ": at most " + std::to_string(stipple::kMaxLights) + " lights");
-    std::string parts[4];
-    int n = 0;
-    for (size_t at = 0;; ++n) {
-        const size_t comma = v.find(',', at);
-        if (n == 4) die(option + " takes X,Y,Z[,INTENSITY], got '" + v + "'");
-        parts[n] = v.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
-        if (comma == std::string::npos) break;
-        at = comma + 1;
-    }
-    if (++n < 3) die(option + " takes X,Y,Z[,INTENSITY], got '" + v + "'");
-    double x[4] = {0, 0, 0, 1};
-    for (int k = 0; k < n; ++k)
-        x[k] = k == 3
-                   ? g_parser.number_value(option + " intensity", parts[k],
-                                           kLimits.light_intensity.min, kLimits.light_intensity.max)
-                   : g_parser.number_value(option + " direction", parts[k], -1e6, 1e6);
-    if (x[0] == 0 && x[1] == 0 && x[2] == 0) die(option + ": the direction must not be zero");
-    stipple::Light& l = o->lights[o->light_count++];
-    l.direction[0] = float(x[0]);
-    l.direction[1] = float(x[1]);
-    l.direction[2] = float(x[2]);
-    l.intensity = float(x[3]);
-}
-
-// What is played and how the camera sees it.
-void add_view_options(stipple::cli::Parser& p, Options& o) {
-    p.text("--clip", &o.clip)
-        .custom("--blend",
-                [&o](const std::string& n, const std::string& v) { parse_mix(n, v, &o); })
-        .custom("--crossfade",
-                [&o](const std::string& n, const std::string& v) { parse_mix(n, v, &o); })
-        .choice("--skinning", {std::pair<const char*, bool>{"lbs", false}, {"dqs", true}}, &o.dqs)
-        .custom("--frames",
-                [&o](const std::string& n, const std::string& v) {
-                    o.frames = long(g_parser.integer_value(n, v, 1, 100000));
-                    o.frames_given = true;
-                })
-        .number("--fps", 0.001, 1000, &o.fps)
-        .number("--time", -1e6, 1e6, &o.time0)
-        .custom("--size",
-                [&o](const std::string& n, const std::string& v) {
-                    const stipple::Setting<int>& w = kLimits.width;
-                    if (!stipple::cli::parse_size(v, w.min, w.max, &o.width, &o.height))
-                        g_parser.bad_value(n,
-                                           "WxH with " + std::to_string(w.min) +
-                                               " <= W, H <= " + std::to_string(w.max),
-                                           v);
-                })
-        .number("--zoom", kLimits.zoom.min, kLimits.zoom.max, &o.zoom)
-        .number("--zoom-to", kLimits.zoom.min, kLimits.zoom.max, &o.zoom_to)
-        .integer("--zoom-period", 2, 100000, &o.zoom_period)
-        .number("--yaw", kLimits.yaw_degrees.min, kLimits.yaw_degrees.max, &o.yaw)
-        .number("--pitch", kLimits.pitch_degrees.min, kLimits.pitch_degrees.max, &o.pitch);
-}
-
-// How the frame is drawn and what is written.
-void add_render_options(stipple::cli::Parser& p, Options& o) {
-    p.number("--tone", kLimits.constant_tone.min, kLimits.constant_tone.max, &o.tone)
-        .number("--point-size", kLimits.max_point_size.min, kLimits.max_point_size.max,
-                &o.point_size)
-        .custom("--background",
-                [&o](const std::string& n, const std::string& v) {
-                    long long rgb = 0;
-                    if (v.size() != 6 ||
-                        v.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos)
-                        g_parser.bad_value(n, "RRGGBB hex", v);
-                    rgb = std::stoll(v, nullptr, 16);
-                    for (int k = 0; k < 3; ++k)
-                        o.background[k] = float((rgb >> (16 - 8 * k)) & 0xFF) / 255;
-                })
-        .flag("--no-relevance-update", &o.relevance_update, false)
-        .number("--dark-tone", kLimits.dark_tone.min, kLimits.dark_tone.max, &o.dark_tone)
-        .integer("--refinement-budget", kLimits.refinement_budget.min,
-                 kLimits.refinement_budget.max, &o.refinement_budget)
-        .flag("--no-silhouettes", &o.silhouettes, false)
-        .number("--line-width", kLimits.line_width.min, kLimits.line_width.max, &o.line_width)
-        .custom("--light",
-                [&o](const std::string& n, const std::string& v) { parse_light(n, v, &o); })
-        .choice("--light-space", {std::pair<const char*, bool>{"camera", false}, {"world", true}},
-                &o.world_lights)
-        .number("--ambient", kLimits.ambient.min, kLimits.ambient.max, &o.ambient)
-        .flag("--no-strokes", &o.strokes, false)
-        .choice("--stroke-quality",
-                {std::pair<const char*, int>{"auto", -1}, {"0", 0}, {"1", 1}, {"2", 2}},
-                &o.stroke_quality)
-        .custom("--stroke-tolerance",
-                [&o](const std::string& n, const std::string& v) { parse_tolerance(n, v, &o); })
-        .number("--stroke-lod", kLimits.stroke_lod_px.min, kLimits.stroke_lod_px.max, &o.stroke_lod)
-        .integer("--stroke-budget", long(kLimits.stroke_vertex_budget.min),
-                 long(kLimits.stroke_vertex_budget.max), &o.stroke_budget)
-        .flag("--roots-out", &o.roots_out)
-        .flag("--dots-out", &o.dots_out)
-        .flag("--mask-out", &o.mask_out)
-        .flag("--no-png", &o.png, false)
-        .flag("--no-apng", &o.apng, false)
-        .flag("--stats", &o.stats)
-        .flag("--check-gl", &o.check_gl)
-        .integer("--rss-every", 1, 100000, &o.rss_every)
-        .choice("--backend",
-                {std::pair<const char*, std::string>{"egl", "egl"}, {"osmesa", "osmesa"}},
-                &o.backend);
-}
-
-Options parse(int argc, char** argv) {
-    Options o;
-    g_parser.positional("asset", &o.asset).text("--out", &o.out);
-    add_view_options(g_parser, o);
-    add_render_options(g_parser, o);
-    stipple::play::add_window_options(g_parser, &o.win);
-    g_parser.parse(argc, argv);
-    if (o.asset.empty()) die("no asset given (see --help)");
-    if (o.out.empty() && !o.win.window) die("no output directory: pass --out DIR");
-    if (!o.win.window && (o.win.fullscreen || o.win.fixed || !o.win.screenshot.empty()))
-        die("--fullscreen, --fixed-time and --screenshot need --window");
-    if (o.win.window && (o.mix != Options::Mix::none || o.zoom_to > 0 || o.backend == "osmesa"))
-        die("--blend, --crossfade, --zoom-to and --backend osmesa do not work with --window");
-    return o;
-}
+using stipple::play::die;
+using stipple::play::kDefaults;
+using stipple::play::kLimits;
+using stipple::play::Options;
 
 std::string frame_path(const Options& o, const char* stem, long frame, const char* ext) {
     char name[64];
@@ -264,13 +71,15 @@ stipple::FrameConfig pipeline_config(const Options& o, const Clips& clips) {
     pc.frame_clip = clips.clip;  // zoom 1 frames every pose of the clips played
     pc.frame_blend_clip = clips.second;
     pc.relevance_update = o.relevance_update;
+    pc.lod = o.lod;
     pc.dark_tone = float(o.dark_tone);
     pc.refinement_budget = uint32_t(o.refinement_budget);
     pc.constant_tone = float(o.tone);
     pc.max_point_size = float(o.point_size);
     pc.silhouettes = o.silhouettes;
-    pc.depth_readback = o.dots_out || o.mask_out;
+    pc.depth_readback = o.dots_out || o.mask_out || o.strokes_out;
     pc.skinning = o.dqs ? stipple::anim::Skinning::dqs : stipple::anim::Skinning::lbs;
+    pc.path = o.gpu_path ? stipple::FramePath::gpu : stipple::FramePath::cpu;
     pc.line_width = float(o.line_width);
     pc.check_gl_errors = o.check_gl;
     pc.strokes = o.strokes;
@@ -288,6 +97,15 @@ stipple::FrameConfig pipeline_config(const Options& o, const Clips& clips) {
         }
     }
     std::memcpy(pc.background, o.background, sizeof(pc.background));
+    pc.style = stipple::Style(o.style);  // looks: runtime/style.h
+    if (o.particle_style >= 0)           // strokes instead of stipples: docs/particles.md
+        pc.particle_style = &stipple::particle_style_at(o.particle_style);
+    pc.toon_bands = int(o.toon_bands);
+    pc.toon_ink = float(o.toon_ink);
+    pc.tone_gamma = float(o.tone_gamma);
+    pc.tone_contrast = float(o.tone_contrast);
+    std::memcpy(pc.fill, o.fill, sizeof(pc.fill));
+    pc.creases = o.creases;
     return pc;
 }
 
@@ -304,7 +122,7 @@ struct Outputs {
 void open_outputs(const Options& o, const stipple::Pipeline& pipeline, Outputs* out) {
     const size_t pixels = size_t(o.width) * size_t(o.height);
     out->rgba.reset(new uint8_t[pixels * 4]);
-    if (o.dots_out || o.mask_out) {
+    if (o.dots_out || o.mask_out || o.strokes_out) {
         out->depth_scratch.reset(new float[pixels * 4]);
         out->depth.reset(new float[pixels]);
         if (o.dots_out) out->dot_scratch.reset(new stipple::VisibleDot[pipeline.point_capacity]);
@@ -329,13 +147,16 @@ void write_frame(const Options& o, long f, stipple::Pipeline* pipeline, Outputs*
         die(error);
     if (o.apng && !out->apng.add_frame(o.width, o.height, out->rgba.get(), true, &error))
         die(error);
-    if (o.dots_out || o.mask_out)
+    if (o.dots_out || o.mask_out || o.strokes_out)
         stipple::renderer_read_depth(&pipeline->renderer, out->depth_scratch.get(),
                                      out->depth.get());
     if (o.dots_out &&
         !stipple::play::write_dots(*pipeline, out->depth.get(), out->dot_scratch.get(),
                                    frame_path(o, "dots", f, "csv")))
         die("cannot write dots file in '" + o.out + "'");
+    if (o.strokes_out && !stipple::play::write_strokes(*pipeline, out->depth.get(),
+                                                       frame_path(o, "strokes", f, "csv")))
+        die("cannot write strokes file in '" + o.out + "'");
     if (o.roots_out && !stipple::play::write_roots(*pipeline, out->root_scratch.get(),
                                                    frame_path(o, "roots", f, "csv")))
         die("cannot write roots file in '" + o.out + "'");
@@ -367,6 +188,7 @@ struct RssLog {
 struct Totals {
     stipple::StageTimes times;
     double frame_ms = 0, drawn = 0, refined = 0, budget_scale = 1;
+    double run = 0, placed = 0, culled_frustum = 0, culled_back = 0;  // level of detail
 };
 
 // --zoom-to: the zoom of frame f, geometric between --zoom and --zoom-to; once over all
@@ -408,6 +230,12 @@ void render_frame(const Options& o, const Clips& clips, long f, stipple::Pipelin
     totals->frame_ms += std::chrono::duration<double, std::milli>(end - start).count();
     totals->drawn += pipeline->points_drawn;
     totals->refined += pipeline->refined_count;
+    const bool lod = pipeline->config.lod && pipeline->clusters.cluster_count > 0;
+    const stipple::LodStats& lod_stats = pipeline->clusters.stats;
+    totals->run += lod ? lod_stats.points_run : pipeline->asset->points.point_count;
+    totals->placed += lod ? lod_stats.points_placed : pipeline->asset->points.point_count;
+    totals->culled_frustum += lod ? lod_stats.culled_frustum : 0;
+    totals->culled_back += lod ? lod_stats.culled_back : 0;
     totals->budget_scale =
         std::min(totals->budget_scale, double(pipeline->refinement_stats.budget_scale));
 }
@@ -459,7 +287,18 @@ void print_stats(const Options& o, const stipple::Asset& asset, const Clips& cli
     j["points_total"] = asset.points.point_count;
     j["points_drawn"] = fixed(t.drawn / n, 1);
     j["points_refined"] = fixed(t.refined / n, 1);
+    j["points_run"] = fixed(t.run / n, 1);  // placed, relevance, sized (LOD: docs/lod.md)
+    j["points_placed"] = fixed(t.placed / n, 1);
+    j["clusters"] = pipeline.clusters.cluster_count;
+    j["clusters_culled_frustum"] = fixed(t.culled_frustum / n, 1);
+    j["clusters_culled_back"] = fixed(t.culled_back / n, 1);
     j["refinement_budget_scale"] = fixed(t.budget_scale, 3);
+    if (pipeline.particles.enabled) {  // the last frame's particles (docs/particles.md)
+        const stipple::ParticleStageStats& ps = pipeline.particles.stats;
+        j["particle_style"] = pipeline.particles.style.name;
+        j["particles_active"] = ps.active;
+        j["particle_strokes"] = ps.strokes;
+    }
     j["ms_per_frame"] = fixed(t.frame_ms / n, 3);
     const std::pair<const char*, double> stages[] = {
         {"sample", t.times.sample},         {"skin", t.times.skin},       {"place", t.times.place},
@@ -484,7 +323,7 @@ void print_stats(const Options& o, const stipple::Asset& asset, const Clips& cli
 }  // namespace
 
 int main(int argc, char** argv) {
-    const Options o = parse(argc, argv);
+    const Options o = stipple::play::parse(argc, argv);
     stipple::Asset asset;
     stipple::Status st = stipple::load_asset_file(o.asset.c_str(), &asset);
     if (!st.ok()) die(o.asset + ": " + st.message);
@@ -492,7 +331,7 @@ int main(int argc, char** argv) {
     if (o.win.window)
         return stipple::play::run_kiosk({&asset, pipeline_config(o, clips), clips.clip, o.time0,
                                          o.frames_given ? o.frames : 0, o.out},
-                                        o.win, g_parser);
+                                        o.win, stipple::play::parser());
     make_output_dir(o.out);
 
     stipple::platform::HeadlessConfig hc;

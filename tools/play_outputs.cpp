@@ -1,5 +1,6 @@
 #include "tools/play_outputs.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include "tools/image_write.h"
@@ -42,6 +43,27 @@ bool write_roots(const Pipeline& p, StrokeRootSample* scratch, const std::string
         std::fprintf(f, "%u,%.3f,%.3f,%.3f,%.3f\n", scratch[i].stroke, double(scratch[i].x),
                      double(scratch[i].y), double(scratch[i].surface_x),
                      double(scratch[i].surface_y));
+    return std::fclose(f) == 0;
+}
+
+bool write_strokes(const Pipeline& p, const float* depth, const std::string& path) {
+    FILE* f = std::fopen(path.c_str(), "w");
+    if (!f) return false;
+    std::fputs("id,x,y,angle,size,width,alpha,visible\n", f);
+    const ParticleStage& s = p.particles;
+    const int w = p.config.width, h = p.config.height;
+    for (uint32_t k = 0; k < s.stroke_count; ++k) {
+        const StrokeInstance& st = s.strokes[k];
+        const int px = int(std::floor(st.x)), py = int(std::floor(st.y));
+        bool visible = px >= 0 && py >= 0 && px < w && py < h && st.depth <= 1.0f;
+        if (visible) {  // as particle_visible_strokes and the stroke shader test it
+            const float mesh = depth[size_t(h - 1 - py) * size_t(w) + size_t(px)];
+            visible = !(mesh < 1.0f && st.depth > mesh + 1e-5f);
+        }
+        std::fprintf(f, "%u,%.2f,%.2f,%.4f,%.2f,%.2f,%.3f,%d\n", s.stroke_id[k], double(st.x),
+                     double(st.y), double(st.angle), double(st.length), double(st.width),
+                     double(st.alpha), visible ? 1 : 0);
+    }
     return std::fclose(f) == 0;
 }
 

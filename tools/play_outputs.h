@@ -23,4 +23,10 @@ bool write_mask(const float* depth, int w, int h, uint8_t* rgba, const std::stri
 // stroke count.
 bool write_roots(const Pipeline& p, StrokeRootSample* scratch, const std::string& path);
 
+// Writes the particle strokes the last frame drew (a particle style, docs/particles.md) as
+// CSV: id,x,y,angle,size,width,alpha,visible (the particle id; centre in pixels, origin
+// top-left; direction in radians; length and width in pixels; opacity; 1 if the centre passes
+// the depth test the stroke shader makes, against `depth`). Nothing is written for stipples.
+bool write_strokes(const Pipeline& p, const float* depth, const std::string& path);
+
 }  // namespace stipple::play

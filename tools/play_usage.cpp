@@ -50,6 +50,9 @@ std::string view_usage() {
            "  --crossfade CLIP2:S     fade from --clip to CLIP2 over S in [0.001, 10000] seconds,\n"
            "                          starting at --time (default: no second clip)\n"
            "  --skinning lbs|dqs      linear blend (default) or dual-quaternion skinning\n"
+           "  --path cpu|gpu          where place, relevance and size run (default cpu; gpu: a\n"
+           "                          GLES 3 vertex shader with transform feedback, no refinement\n"
+           "                          past the baked points, no --dots-out; docs/gpu-path.md)\n"
            "  --frames N              frames to render (default 30, in [1, 100000])\n"
            "  --fps F                 frames per second of animation time (default 30, in [0.001, "
            "1000])\n"
@@ -90,6 +93,8 @@ std::string render_usage() {
            ")\n"
            "  --no-relevance-update   keep rest-pose relevance radii (thesis Alg. 6.3 without "
            "6.4)\n"
+           "  --no-lod                run place, relevance and size on every point (default: only\n"
+           "                          clusters in view, cut where no dot can draw; docs/lod.md)\n"
            "  --dark-tone T           darkest tone lighting asks for, thesis §8.4 (default " +
            g(defaults().dark_tone) + ", " + range(kLimits.dark_tone) +
            ")\n"
@@ -135,6 +140,8 @@ std::string render_usage() {
            "                          each stroke's drawn root and its host surface point, "
            "pixels)\n"
            "  --dots-out              also write dots_NNNN.csv (id,x,y,size per drawn dot)\n"
+           "  --strokes-out           particle styles: also write strokes_NNNN.csv\n"
+           "                          (id,x,y,angle,size,width,alpha,visible per stroke)\n"
            "  --mask-out              also write mask_NNNN.png: white where the mesh covers the\n"
            "                          pixel, black elsewhere (the object mask of stipple-measure)\n"
            "  --no-png                do not write per-frame PNGs\n"
@@ -148,10 +155,43 @@ std::string render_usage() {
            std::string(stipple::play::kWindowUsage) + "  -h, --help              this text\n";
 }
 
+// The looks (runtime/style.h, docs/styles.md).
+std::string look_usage() {
+    char fill[8];
+    std::snprintf(fill, sizeof(fill), "%06x", rgb_of(defaults().fill));
+    return std::string("  --style S               ") + style_name_list() + " (default " +
+           style_name(defaults().style) +
+           "; docs/styles.md):\n"
+           "                          toon: banded fill + darker dots (thesis §7.2); colour: dots\n"
+           "                          in the surface colour (§8.6); transparent: parts marked\n"
+           "                          transparent (all without LOOK) draw only dots and lines\n"
+           "  --style P               or a particle style (GI'01, docs/particles.md): strokes\n"
+           "                          instead of dots: painterly-long|painterly-dab|sketch|\n"
+           "                          cartoon|graftals|charcoal|two-tone|ink\n"
+           "  --toon-bands N          toon ramp bands, 2 or 3 (default " +
+           std::to_string(defaults().toon_bands) +
+           ")\n"
+           "  --toon-ink F            toon dots: the fill colour times F (default " +
+           g(defaults().toon_ink) + ", " + range(kLimits.toon_ink) +
+           ")\n"
+           "  --fill RRGGBB           toon fill / colour dots where the asset has no colour\n"
+           "                          (default " +
+           fill +
+           ")\n"
+           "  --tone-gamma G          tone curve T -> T^G before the size rule (> 1: lighter;\n"
+           "                          default 1, " +
+           range(kLimits.tone_gamma) +
+           ")\n"
+           "  --tone-contrast C       then 0.5 + (T - 0.5) C (default 1, " +
+           range(kLimits.tone_contrast) +
+           ")\n"
+           "  --no-creases            do not draw the asset's crease lines (LOOK, thesis §8.2)\n";
+}
+
 }  // namespace
 
 std::string usage() {
-    return view_usage() + render_usage();
+    return view_usage() + look_usage() + render_usage();
 }
 
 }  // namespace stipple::play

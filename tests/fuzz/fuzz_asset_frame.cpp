@@ -84,8 +84,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     stipple::Asset asset;
     if (!stipple::load_asset_memory(bytes.data(), bytes.size(), &asset).ok()) return 0;
     stipple::FrameConfig config;
-    config.width = 160;
-    config.height = 120;
+    config.width = 96;
+    config.height = 72;
+    // A small refinement budget: the same code paths (the budget binds more often, so the
+    // rescaled pass and the count limit run too) at a fraction of the 2^18 default's cost.
+    config.refinement_budget = 2048;
     run_frames(asset, config);
     // A close-up with dual quaternions, framed on the clips: refinement past the hierarchy.
     config.zoom = 8.0f;

@@ -214,4 +214,30 @@ TEST(BakeFiles, SigtermLeavesNoTempFile) {
     }
 }
 
+// SIGTERM while the asset is being written (the signal is sent once the temp file next to
+// the output appears): the temp file is removed and no output remains; if the write won the
+// race, the asset is whole and alone.
+TEST(BakeFiles, SigtermDuringTheWriteLeavesNoTempFile) {
+    ScratchDir dir;
+    const std::string out = dir.file("bunny.stip");
+    std::string log;
+    const int rc = run("sh -c '" + bin("stipple-bake") + " " +
+                           source("assets/StanfordBunny/stanford-bunny.obj") + " -o " + out +
+                           " --points 400000 --quiet & pid=$!; "
+                           "until ls " +
+                           dir.path() +
+                           " | grep -q bunny.stip.; do "
+                           "kill -0 $pid 2>/dev/null || break; sleep 0.002; done; "
+                           "kill -TERM $pid 2>/dev/null; wait $pid; echo status=$?'",
+                       &log);
+    EXPECT_EQ(rc, 0) << log;
+    if (log.find("status=0") != std::string::npos) {
+        EXPECT_TRUE(fs::exists(out));  // the write finished before the signal
+        EXPECT_EQ(other_files(dir.path(), {"bunny.stip"}), std::vector<std::string>());
+    } else {
+        EXPECT_NE(log.find("status=143"), std::string::npos) << log;  // 128 + SIGTERM
+        EXPECT_EQ(other_files(dir.path(), {}), std::vector<std::string>());
+    }
+}
+
 }  // namespace

@@ -1,0 +1,176 @@
+// View-dependent particles (GI'01, runtime/particle_stage.h) on CesiumMan (20k points)
+// walking, 640x480, headless EGL. Per frame, each stage against its simplest alternative in
+// the same run:
+//   Adjust       stage 1 over the persistent active set; counter ns per active particle.
+//   AdjustFull   the alternative: the same criterion asked of every particle of the tree
+//                each frame (no persistent set); ns per particle.
+//   Transform    stage 3 over the listed particles; ns per listed particle.
+//   Strokes      stage 4's CPU half (tone rule, foreshortening, binning); ns per stroke.
+//   Render       stage 4's draw of the instanced brush quads + glFinish; ns per stroke.
+//   RenderFloor  the same instances drawn 1 px wide and long (vertex work, no fill); the
+//                ratio Render / RenderFloor is the cost of the brush texels.
+// Zero allocations per frame are checked in tests/alloc/test_particle_allocation.cpp.
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <vector>
+
+#include "bench/bench_asset.h"
+#include "platform/headless_context.h"
+#include "runtime/particle_frame.h"
+
+namespace {
+
+using namespace stipple;
+
+struct Setup {
+    platform::HeadlessContext context;
+    GlApi gl;
+    Asset asset;
+    std::unique_ptr<Pipeline> pipeline = std::make_unique<Pipeline>();
+    std::unique_ptr<ParticleStage> stage = std::make_unique<ParticleStage>();
+    std::vector<uint32_t> all;  // every particle id, for AdjustFull
+    std::vector<uint8_t> unfold;
+    std::vector<StrokeInstance> thin;
+};
+
+Setup* setup() {
+    static std::unique_ptr<Setup> s;
+    static bool tried = false;
+    if (tried) return s.get();
+    tried = true;
+    auto n = std::make_unique<Setup>();
+    if (!platform::create_headless_context({}, &n->context).ok()) return nullptr;
+    if (!load_gl_api(platform::proc_loader(n->context), &n->gl).ok()) return nullptr;
+    if (!bench::bake_asset("CesiumMan/CesiumMan.glb", 20000, &n->asset)) return nullptr;
+    const ParticleStyle& style = *find_particle_style("painterly-long");
+    FrameConfig c;
+    particle_style_frame_config(style, &c);
+    if (!pipeline_init(n->pipeline.get(), n->asset, n->gl, c).ok()) return nullptr;
+    if (!particle_stage_init(n->stage.get(), n->asset, style, c.width, c.height).ok() ||
+        !particle_stage_init_gl(n->stage.get(), n->gl).ok())
+        return nullptr;
+    n->all.resize(n->asset.points.point_count);
+    for (uint32_t i = 0; i < n->all.size(); ++i) n->all[i] = i;
+    n->unfold.resize(n->all.size());
+    s = std::move(n);
+    return s.get();
+}
+
+// Poses frame f of the walk (30 fps) and runs stage 1 once, so the set follows the walk.
+void pose(Setup* s, int f) {
+    AnimationState state;
+    state.clip = 0;
+    state.time = float(f % 60) / 30.0f;
+    pipeline_update(s->pipeline.get(), state, nullptr);
+}
+
+void BM_Adjust(benchmark::State& state) {
+    Setup* s = setup();
+    if (!s) return state.SkipWithError("no headless GL or asset");
+    int f = 0;
+    double active = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        pose(s, f++);
+        const ParticleFrame frame = pipeline_particle_input(*s->pipeline);
+        state.ResumeTiming();
+        particle_stage_adjust(s->stage.get(), frame);
+        active += s->stage->set.active_count;
+    }
+    state.counters["active"] = active / double(state.iterations());
+    state.counters["ns_per_active"] = benchmark::Counter(
+        active * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void BM_AdjustFull(benchmark::State& state) {
+    Setup* s = setup();
+    if (!s) return state.SkipWithError("no headless GL or asset");
+    ParticleSamples& scratch = s->stage->asked;
+    int f = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        pose(s, f++);
+        const ParticleFrame frame = pipeline_particle_input(*s->pipeline);
+        state.ResumeTiming();
+        transform_particles(frame, s->all.data(), uint32_t(s->all.size()), nullptr,
+                            s->stage->style.field, &scratch);
+        for (uint32_t k = 0; k < scratch.count; ++k) scratch.unfolded[k] = 0;
+        particle_style_adjust(s->stage->style, scratch, s->unfold.data());
+        benchmark::DoNotOptimize(s->unfold.data());
+    }
+    state.counters["ns_per_particle"] =
+        benchmark::Counter(double(state.iterations()) * double(s->all.size()) * 1e-9,
+                           benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void BM_Transform(benchmark::State& state) {
+    Setup* s = setup();
+    if (!s) return state.SkipWithError("no headless GL or asset");
+    int f = 0;
+    double listed = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        pose(s, f++);
+        particle_stage_adjust(s->stage.get(), pipeline_particle_input(*s->pipeline));
+        state.ResumeTiming();
+        particle_stage_transform(s->stage.get());
+        listed += s->stage->set.count;
+    }
+    state.counters["listed"] = listed / double(state.iterations());
+    state.counters["ns_per_listed"] = benchmark::Counter(
+        listed * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void BM_Strokes(benchmark::State& state) {
+    Setup* s = setup();
+    if (!s) return state.SkipWithError("no headless GL or asset");
+    pose(s, 0);
+    particle_stage_update(s->stage.get(), pipeline_particle_input(*s->pipeline));
+    for (auto _ : state) particle_stage_build_strokes(s->stage.get());
+    state.counters["strokes"] = s->stage->stroke_count;
+    state.counters["ns_per_stroke"] =
+        benchmark::Counter(double(state.iterations()) * s->stage->stroke_count * 1e-9,
+                           benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+// Draws the strokes (thin: 1 px quads) over the frame's polygon pass, then glFinish.
+void render(benchmark::State& state, bool thin) {
+    Setup* s = setup();
+    if (!s) return state.SkipWithError("no headless GL or asset");
+    pose(s, 0);
+    ParticleStage& st = *s->stage;
+    particle_stage_update(&st, pipeline_particle_input(*s->pipeline));
+    std::vector<StrokeInstance> strokes(st.strokes.get(), st.strokes.get() + st.stroke_count);
+    if (thin)
+        for (StrokeInstance& i : strokes) i.length = i.width = 1.0f;
+    Renderer& r = s->pipeline->renderer;
+    renderer_draw_mesh(&r, s->pipeline->view_projection, s->pipeline->vertex_positions.get(),
+                       s->asset.mesh.vertex_count);
+    for (auto _ : state) {
+        particle_renderer_draw(&st.renderer, r.ink_fbo, r.depth_tex, st.width, st.height,
+                               strokes.data(), uint32_t(strokes.size()));
+        s->gl.Finish();
+    }
+    state.counters["strokes"] = double(strokes.size());
+    state.counters["ns_per_stroke"] =
+        benchmark::Counter(double(state.iterations()) * double(strokes.size()) * 1e-9,
+                           benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void BM_Render(benchmark::State& state) {
+    render(state, false);
+}
+void BM_RenderFloor(benchmark::State& state) {
+    render(state, true);
+}
+
+// Interleaved, repeated: report min and median (the machine is noisy).
+BENCHMARK(BM_Adjust)->Repetitions(5)->ReportAggregatesOnly(false);
+BENCHMARK(BM_AdjustFull)->Repetitions(5);
+BENCHMARK(BM_Transform)->Repetitions(5);
+BENCHMARK(BM_Strokes)->Repetitions(5);
+BENCHMARK(BM_Render)->Repetitions(5);
+BENCHMARK(BM_RenderFloor)->Repetitions(5);
+
+}  // namespace

@@ -1,0 +1,70 @@
+// View-dependent particles (GI'01) on the point hierarchy, one frame at a time:
+//   1. adjust: fold/unfold the persistent active set against the style's criterion
+//      (runtime/particle_adjust.h), with fades;
+//   2. polygon pass: the frame pipeline's depth pass (runtime/renderer.h), per the style's fill;
+//   3. transform/light the listed particles (runtime/particle_transform.h);
+//   4. strokes: the style's rule and screen-space binning (runtime/particle_style.h), drawn as
+//      instanced brush quads (runtime/particle_renderer.h).
+// Memory is taken at init from the asset's point count; a frame allocates nothing.
+#pragma once
+#include <cstdint>
+
+#include "runtime/asset.h"
+#include "runtime/particle_adjust.h"
+#include "runtime/particle_renderer.h"
+#include "runtime/particle_style.h"
+#include "runtime/particle_transform.h"
+#include "runtime/particle_tree.h"
+
+namespace stipple {
+
+struct ParticleStageStats {
+    uint32_t active = 0, listed = 0;  // particles in the active set; drawn (fades included)
+    uint32_t joined = 0, left = 0;    // changes of the active set this frame
+    uint32_t asked = 0;               // adjust decisions made
+    uint32_t strokes = 0;             // strokes drawn
+};
+
+struct ParticleStage {
+    bool enabled = false;
+    ParticleStyle style;
+    Buffer<uint32_t> parent;  // the particle tree's parents (runtime/particle_tree.h)
+    ParticleTree tree;
+    ParticleSet set;
+    ParticleSamples asked, samples;  // stage 1's scratch; stage 3's output
+    // Per particle: opacity of turning away (fades to 0 on the back, like a fold), and the
+    // frame it was last drawn in (a particle back in the list starts at its target).
+    Buffer<float> facing_alpha;
+    Buffer<uint32_t> last_frame;
+    uint32_t frame_index = 0;
+    Buffer<uint16_t> bins;
+    uint32_t bin_count = 0;
+    Buffer<StrokeInstance> strokes;
+    Buffer<uint32_t> stroke_id;  // the particle each stroke belongs to
+    uint32_t stroke_count = 0;
+    int width = 0, height = 0;
+    ParticleFrame frame;  // this frame's input, while adjusting
+    ParticleStageStats stats;
+    ParticleRenderer renderer;
+};
+
+// Builds the particle tree from the asset's points (parents by particle_parents over the bind
+// pose) and takes every buffer for `style` and an image of width x height. Fails with
+// out_of_memory, or invalid_argument for a style whose values are out of range.
+[[nodiscard]] Status particle_stage_init(ParticleStage* s, const Asset& asset,
+                                         const ParticleStyle& style, int width, int height);
+[[nodiscard]] Status particle_stage_init_gl(ParticleStage* s, const GlApi& gl);
+
+// Stages 1, 3 and the CPU half of 4 for this frame's posed mesh and camera: the three calls
+// below in order (separate for the benchmarks).
+void particle_stage_update(ParticleStage* s, const ParticleFrame& frame);
+void particle_stage_adjust(ParticleStage* s, const ParticleFrame& frame);  // stage 1
+void particle_stage_transform(ParticleStage* s);                           // stage 3
+void particle_stage_build_strokes(ParticleStage* s);                       // stage 4, CPU
+
+// The GPU half of stage 4: draws the strokes into `framebuffer`, hidden by `depth_texture`.
+void particle_stage_draw(ParticleStage* s, GLuint framebuffer, GLuint depth_texture);
+
+void particle_stage_destroy(ParticleStage* s);
+
+}  // namespace stipple

@@ -1,0 +1,542 @@
+#include "runtime/point_clusters.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <glm/gtc/type_ptr.hpp>
+
+namespace stipple {
+
+namespace {
+
+// Thesis §9.1.2's parts: about this many grid cells' worth of surface (cell side =
+// sqrt(area / kTargetCells)), split further by dominant joint. Fixed by the mesh, not by the
+// point count, so a denser bake has as many clusters, each with more points.
+constexpr double kTargetCells = 256.0;
+constexpr uint32_t kCellBits = 14;  // cell coordinates per axis: 0 .. 2^14 - 1
+
+const float* vertex(const float* positions, uint32_t v) {
+    return positions + size_t(v) * 3;
+}
+
+// Bind-pose position of point i (thesis Alg. 6.3 on the bind mesh).
+void bind_position(const Asset& a, uint32_t i, float out[3]) {
+    const PointsView& p = a.points;
+    const uint32_t* tri = a.mesh.indices + size_t(p.host_triangle[i]) * 3;
+    const float u = p.bary_u[i], v = p.bary_v[i], w = 1.0f - u - v;
+    for (int k = 0; k < 3; ++k)
+        out[k] = u * vertex(a.mesh.positions, tri[0])[k] + v * vertex(a.mesh.positions, tri[1])[k] +
+                 w * vertex(a.mesh.positions, tri[2])[k];
+}
+
+// Which measure relevance_scale (runtime/point_placement.cpp) gives point i: bit 1 the area
+// measure k I2^(1/4) (neighbours spanning an area, or none: the fallback radius), bit 2 the
+// mean distance (nearly collinear neighbours); both near the 0.01 tr^2 threshold (rounding).
+int relevance_measure(const Asset& a, uint32_t i) {
+    const PointsView& p = a.points;
+    if (p.neighbour_offsets[i] == p.neighbour_offsets[i + 1]) return 1;
+    float c[3], q[3];
+    bind_position(a, i, c);
+    float xx = 0, yy = 0, zz = 0, xy = 0, xz = 0, yz = 0;
+    for (uint32_t k = p.neighbour_offsets[i]; k < p.neighbour_offsets[i + 1]; ++k) {
+        bind_position(a, p.neighbours[k], q);
+        const float dx = q[0] - c[0], dy = q[1] - c[1], dz = q[2] - c[2];
+        xx += dx * dx, yy += dy * dy, zz += dz * dz;
+        xy += dx * dy, xz += dx * dz, yz += dy * dz;
+    }
+    const float i2 = (xx * yy - xy * xy) + (xx * zz - xz * xz) + (yy * zz - yz * yz);
+    const float trace = xx + yy + zz;
+    const bool area = i2 > 0.009f * trace * trace && i2 > 0.0f;
+    const bool line = !(i2 > 0.011f * trace * trace && i2 > 0.0f);
+    return (area ? 1 : 0) | (line ? 2 : 0);
+}
+
+// Per triangle: dominant joint (skinned) and grid cell of the bind centroid, as one key.
+uint64_t triangle_key(const Asset& a, uint32_t t, const float lo[3], double cell) {
+    const uint32_t* tri = a.mesh.indices + size_t(t) * 3;
+    uint64_t joint = 0;
+    if (a.skinned && a.skin.joints && a.skin.weights) {
+        uint16_t ids[12];
+        float sums[12];
+        int n = 0;
+        for (int k = 0; k < 3; ++k)
+            for (int j = 0; j < 4; ++j) {
+                const uint16_t id = a.skin.joints[size_t(tri[k]) * 4 + j];
+                const float w = a.skin.weights[size_t(tri[k]) * 4 + j];
+                int m = 0;
+                while (m < n && ids[m] != id) ++m;
+                if (m == n) ids[n] = id, sums[n++] = 0.0f;
+                sums[m] += w;
+            }
+        int best = 0;
+        for (int m = 1; m < n; ++m)
+            if (sums[m] > sums[best] || (sums[m] == sums[best] && ids[m] < ids[best])) best = m;
+        joint = ids[best];
+    }
+    uint64_t key = joint;
+    for (int k = 0; k < 3; ++k) {
+        const double centre =
+            (double(vertex(a.mesh.positions, tri[0])[k]) + vertex(a.mesh.positions, tri[1])[k] +
+             vertex(a.mesh.positions, tri[2])[k]) /
+            3.0;
+        const double x = std::floor((centre - lo[k]) / cell);
+        const uint64_t max_cell = (1u << kCellBits) - 1;
+        key = key << kCellBits | uint64_t(std::min(std::max(x, 0.0), double(max_cell)));
+    }
+    return key;
+}
+
+// The grid cell side: the surface area split into about kTargetCells squares.
+double cell_side(const MeshView& m, float lo[3]) {
+    float hi[3];
+    for (int k = 0; k < 3; ++k) lo[k] = m.vertex_count ? m.positions[k] : 0.0f, hi[k] = lo[k];
+    for (uint32_t v = 0; v < m.vertex_count; ++v)
+        for (int k = 0; k < 3; ++k)
+            lo[k] = std::min(lo[k], m.positions[size_t(v) * 3 + k]),
+            hi[k] = std::max(hi[k], m.positions[size_t(v) * 3 + k]);
+    double area = 0.0;
+    for (uint32_t t = 0; t < m.triangle_count; ++t) {
+        const uint32_t* tri = m.indices + size_t(t) * 3;
+        const glm::dvec3 a(glm::make_vec3(vertex(m.positions, tri[0])));
+        const glm::dvec3 b(glm::make_vec3(vertex(m.positions, tri[1])));
+        const glm::dvec3 c(glm::make_vec3(vertex(m.positions, tri[2])));
+        area += 0.5 * glm::length(glm::cross(b - a, c - a));
+    }
+    const double extent =
+        std::max({double(hi[0] - lo[0]), double(hi[1] - lo[1]), double(hi[2] - lo[2]), 1e-30});
+    // Never so fine that a coordinate overflows its bits.
+    const double side = std::sqrt(area / kTargetCells);
+    return std::max(side, extent / double((1u << kCellBits) - 2));
+}
+
+// Triangles sorted by key (ties by index: deterministic), numbered into clusters.
+Status group_triangles(PointClusters* c, const Asset& a, Buffer<uint32_t>* tri_cluster) {
+    const uint32_t tcount = a.mesh.triangle_count;
+    Buffer<uint64_t> keys = make_buffer<uint64_t>(tcount);
+    Buffer<uint32_t> sorted = make_buffer<uint32_t>(tcount);
+    *tri_cluster = make_buffer<uint32_t>(tcount);
+    if (!keys || !sorted || !*tri_cluster)
+        return make_status(StatusCode::out_of_memory, "out of memory for %u clusters", tcount);
+    float lo[3];
+    const double cell = cell_side(a.mesh, lo);
+    for (uint32_t t = 0; t < tcount; ++t) keys[t] = triangle_key(a, t, lo, cell), sorted[t] = t;
+    const uint64_t* k = keys.get();
+    std::sort(sorted.get(), sorted.get() + tcount,
+              [k](uint32_t x, uint32_t y) { return k[x] != k[y] ? k[x] < k[y] : x < y; });
+    uint32_t clusters = 0;
+    for (uint32_t j = 0; j < tcount; ++j) {
+        if (j > 0 && k[sorted[j]] != k[sorted[j - 1]]) ++clusters;
+        (*tri_cluster)[sorted[j]] = clusters;
+    }
+    c->cluster_count = tcount ? clusters + 1 : 0;
+    return {};
+}
+
+// The points by cluster, a stable bucket sort: each cluster keeps the global coarse-to-fine
+// order.
+Status sort_points(PointClusters* c, const Asset& a, const uint32_t* tri_cluster) {
+    const uint32_t n = a.points.point_count;
+    if (!alloc(&c->point_begin, size_t(c->cluster_count) + 1) || !alloc(&c->order, n))
+        return make_status(StatusCode::out_of_memory, "out of memory for %u points", n);
+    uint32_t* begin = c->point_begin.get();
+    std::fill(begin, begin + c->cluster_count + 1, 0u);
+    for (uint32_t i = 0; i < n; ++i) ++begin[tri_cluster[a.points.host_triangle[i]] + 1];
+    for (uint32_t k = 0; k < c->cluster_count; ++k) begin[k + 1] += begin[k];
+    Buffer<uint32_t> fill = make_buffer<uint32_t>(c->cluster_count);
+    if (!fill) return make_status(StatusCode::out_of_memory, "out of memory for clusters");
+    std::memcpy(fill.get(), begin, size_t(c->cluster_count) * 4);
+    for (uint32_t i = 0; i < n; ++i) c->order[fill[tri_cluster[a.points.host_triangle[i]]]++] = i;
+    return {};
+}
+
+// A CSR list per cluster of unique items: visit(cluster, emit) calls emit(item) for each
+// item (repeats allowed); `stamp` has item_count entries.
+template <typename Visit>
+Status build_lists(uint32_t clusters, uint32_t item_count, Buffer<uint32_t>* begin,
+                   Buffer<uint32_t>* items, Visit visit) {
+    Buffer<uint32_t> stamp = make_buffer<uint32_t>(item_count);
+    if (!stamp || !alloc(begin, size_t(clusters) + 1))
+        return make_status(StatusCode::out_of_memory, "out of memory for cluster lists");
+    std::fill(stamp.get(), stamp.get() + item_count, 0u);
+    uint32_t total = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+        if (pass == 1 && !alloc(items, total))
+            return make_status(StatusCode::out_of_memory, "out of memory for cluster lists");
+        uint32_t n = 0;
+        for (uint32_t k = 0; k < clusters; ++k) {
+            (*begin)[k] = n;
+            const uint32_t mark = k + 1 + pass * clusters;
+            visit(k, [&](uint32_t item) {
+                if (stamp[item] == mark) return;
+                stamp[item] = mark;
+                if (pass == 1) (*items)[n] = item;
+                ++n;
+            });
+        }
+        (*begin)[clusters] = n;
+        total = n;
+    }
+    return {};
+}
+
+// Vertices of each cluster's triangles, and the triangles its points and their relevant
+// neighbours lie on.
+Status cluster_lists(PointClusters* c, const Asset& a, const uint32_t* tri_cluster) {
+    const uint32_t tcount = a.mesh.triangle_count;
+    Buffer<uint32_t> tri_begin = make_buffer<uint32_t>(size_t(c->cluster_count) + 1);
+    Buffer<uint32_t> tris = make_buffer<uint32_t>(tcount);
+    if (!tri_begin || !tris) return make_status(StatusCode::out_of_memory, "out of memory");
+    std::fill(tri_begin.get(), tri_begin.get() + c->cluster_count + 1, 0u);
+    for (uint32_t t = 0; t < tcount; ++t) ++tri_begin[tri_cluster[t] + 1];
+    for (uint32_t k = 0; k < c->cluster_count; ++k) tri_begin[k + 1] += tri_begin[k];
+    {
+        Buffer<uint32_t> fill = make_buffer<uint32_t>(c->cluster_count);
+        if (!fill) return make_status(StatusCode::out_of_memory, "out of memory");
+        std::memcpy(fill.get(), tri_begin.get(), size_t(c->cluster_count) * 4);
+        for (uint32_t t = 0; t < tcount; ++t) tris[fill[tri_cluster[t]]++] = t;
+    }
+    Status st = build_lists(c->cluster_count, a.mesh.vertex_count, &c->vertex_begin, &c->vertices,
+                            [&](uint32_t k, auto emit) {
+                                for (uint32_t j = tri_begin[k]; j < tri_begin[k + 1]; ++j)
+                                    for (int v = 0; v < 3; ++v)
+                                        emit(a.mesh.indices[size_t(tris[j]) * 3 + v]);
+                            });
+    if (!st.ok()) return st;
+    const PointsView& p = a.points;
+    return build_lists(
+        c->cluster_count, tcount, &c->reach_begin, &c->reach, [&](uint32_t k, auto emit) {
+            for (uint32_t j = tri_begin[k]; j < tri_begin[k + 1]; ++j) emit(tris[j]);
+            for (uint32_t j = c->point_begin[k]; j < c->point_begin[k + 1]; ++j) {
+                const uint32_t i = c->order[j];
+                for (uint32_t e = p.neighbour_offsets[i]; e < p.neighbour_offsets[i + 1]; ++e)
+                    emit(p.host_triangle[p.neighbours[e]]);
+            }
+        });
+}
+
+// Radius bounds along `order`, as suffix maxima per cluster; which clusters back-face culling
+// may skip (single-sided triangles, barycentric weights in [0, 1]).
+Status cluster_bounds(PointClusters* c, const Asset& a, const float* rest_radius) {
+    const uint32_t n = a.points.point_count;
+    if (!alloc(&c->bound, n) || !alloc(&c->line_bound, n) || !alloc(&c->rest_bound, n) ||
+        !alloc(&c->single_sided, c->cluster_count))
+        return make_status(StatusCode::out_of_memory, "out of memory for %u points", n);
+    const PointsView& p = a.points;
+    const uint8_t* double_sided = a.sides.triangle_double_sided;
+    for (uint32_t k = 0; k < c->cluster_count; ++k) {
+        float bound = 0.0f, line = 0.0f, rest = 0.0f;
+        bool single = true;
+        for (uint32_t j = c->point_begin[k + 1]; j-- > c->point_begin[k];) {
+            const uint32_t i = c->order[j];
+            const int measure = relevance_measure(a, i);
+            if (measure & 1) bound = std::max(bound, p.radius[i]);
+            if (measure & 2) line = std::max(line, p.radius[i]);
+            rest = std::max(rest, rest_radius[i]);
+            c->bound[j] = bound;
+            c->line_bound[j] = line;
+            c->rest_bound[j] = rest;
+            const float w = 1.0f - p.bary_u[i] - p.bary_v[i];
+            if (!(p.bary_u[i] >= 0.0f && p.bary_v[i] >= 0.0f && w >= 0.0f)) single = false;
+            if (double_sided && double_sided[p.host_triangle[i]]) single = false;
+        }
+        c->single_sided[k] = single;
+    }
+    return {};
+}
+
+// Paintstroke roots the stroke stage reads (runtime/stroke_stage.cpp): run every frame.
+Status forced_points(PointClusters* c, const Asset& a) {
+    const StrokesView& s = a.strokes;
+    if (!alloc(&c->forced, s.stroke_count))
+        return make_status(StatusCode::out_of_memory, "out of memory for stroke roots");
+    c->forced_count = 0;
+    for (uint32_t i = 0; i < s.stroke_count; ++i)
+        if (s.strokes[i].root_point != format::kNoRootPoint &&
+            s.strokes[i].root_point < a.points.point_count)
+            c->forced[c->forced_count++] = s.strokes[i].root_point;
+    return {};
+}
+
+Status bind_grams(PointClusters* c, const Asset& a) {
+    const MeshView& m = a.mesh;
+    c->deforming = a.skinned || a.has_morph();
+    if (!c->deforming) return {};
+    if (!alloc(&c->bind_gram, size_t(m.triangle_count) * 3) ||
+        !alloc(&c->stretch, m.triangle_count) || !alloc(&c->edge_stretch, m.triangle_count))
+        return make_status(StatusCode::out_of_memory, "out of memory for %u triangles",
+                           m.triangle_count);
+    for (uint32_t t = 0; t < m.triangle_count; ++t) {
+        const uint32_t* tri = m.indices + size_t(t) * 3;
+        const glm::vec3 o = glm::make_vec3(vertex(m.positions, tri[0]));
+        const glm::vec3 e1 = glm::make_vec3(vertex(m.positions, tri[1])) - o;
+        const glm::vec3 e2 = glm::make_vec3(vertex(m.positions, tri[2])) - o;
+        c->bind_gram[size_t(t) * 3] = glm::dot(e1, e1);
+        c->bind_gram[size_t(t) * 3 + 1] = glm::dot(e1, e2);
+        c->bind_gram[size_t(t) * 3 + 2] = glm::dot(e2, e2);
+    }
+    return {};
+}
+
+}  // namespace
+
+Status point_clusters_init(PointClusters* c, const Asset& a, const float* rest_radius) {
+    *c = PointClusters();
+    c->point_count = a.points.point_count;
+    Buffer<uint32_t> tri_cluster;
+    Status st = group_triangles(c, a, &tri_cluster);
+    if (st.ok()) st = sort_points(c, a, tri_cluster.get());
+    if (st.ok()) st = cluster_lists(c, a, tri_cluster.get());
+    if (st.ok()) st = cluster_bounds(c, a, rest_radius);
+    if (st.ok()) st = forced_points(c, a);
+    if (st.ok()) st = bind_grams(c, a);
+    c->word_count = (c->point_count + 63) / 64;
+    if (st.ok() && (!alloc(&c->run, c->point_count) || !alloc(&c->placed, c->point_count) ||
+                    !alloc(&c->run_bits, c->word_count) || !alloc(&c->placed_bits, c->word_count)))
+        st = make_status(StatusCode::out_of_memory, "out of memory for %u points", c->point_count);
+    if (!st.ok()) return st;
+    c->stats.clusters = c->cluster_count;
+    return {};
+}
+
+namespace {
+
+// Stretch of each triangle (bind -> posed). Alg. 6.4's area measure follows the local area
+// (exactly, under a linear deformation: I2 scales by det^2), so its radius grows with the
+// square root of the area ratio; the mean-distance measure with the edge lengths, bounded by
+// the largest edge ratio. A degenerate bind triangle takes its edge ratio for both.
+void triangle_stretch(PointClusters* c, const MeshView& m, const float* posed) {
+    for (uint32_t t = 0; t < m.triangle_count; ++t) {
+        const uint32_t* tri = m.indices + size_t(t) * 3;
+        const glm::vec3 o = glm::make_vec3(vertex(posed, tri[0]));
+        const glm::vec3 e1 = glm::make_vec3(vertex(posed, tri[1])) - o;
+        const glm::vec3 e2 = glm::make_vec3(vertex(posed, tri[2])) - o;
+        const float a = c->bind_gram[size_t(t) * 3], b = c->bind_gram[size_t(t) * 3 + 1],
+                    cc = c->bind_gram[size_t(t) * 3 + 2];
+        const float a2 = glm::dot(e1, e1), b2 = glm::dot(e1, e2), c2 = glm::dot(e2, e2);
+        const float e3 = a2 - 2.0f * b2 + c2, e3_bind = a - 2.0f * b + cc;  // |e2 - e1|^2
+        const float lambda = std::max({a > 0.0f ? a2 / a : (a2 > 0.0f ? 1e30f : 1.0f),
+                                       cc > 0.0f ? c2 / cc : (c2 > 0.0f ? 1e30f : 1.0f),
+                                       e3_bind > 0.0f ? e3 / e3_bind : (e3 > 0.0f ? 1e30f : 1.0f)});
+        c->edge_stretch[t] = std::sqrt(lambda);
+        const float det = a * cc - b * b, det2 = a2 * c2 - b2 * b2;  // area^2 (times 4)
+        c->stretch[t] = det > 1e-6f * (a + cc) * (a + cc)
+                            ? std::sqrt(std::sqrt(std::max(det2, 0.0f) / det))
+                            : c->edge_stretch[t];
+    }
+}
+
+struct Box {
+    glm::vec3 lo, hi;
+};
+
+Box cluster_box(const PointClusters& c, uint32_t k, const float* positions) {
+    Box b{glm::vec3(1e30f), glm::vec3(-1e30f)};
+    for (uint32_t j = c.vertex_begin[k]; j < c.vertex_begin[k + 1]; ++j) {
+        const glm::vec3 v = glm::make_vec3(vertex(positions, c.vertices[j]));
+        b.lo = glm::min(b.lo, v);
+        b.hi = glm::max(b.hi, v);
+    }
+    return b;
+}
+
+// The box's 8 corners in clip space: outside when all lie beyond one plane. The renderer
+// drops a dot whose centre falls outside the image or the depth range (runtime/renderer.cpp),
+// so x and y get one pixel of margin for rounding and z none. Also the smallest clip w.
+bool outside_frustum(const Box& b, const glm::mat4& vp, const glm::vec2& margin, float* w_min) {
+    uint32_t all = 0x3F;
+    *w_min = 1e30f;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p((corner & 1) ? b.hi.x : b.lo.x, (corner & 2) ? b.hi.y : b.lo.y,
+                          (corner & 4) ? b.hi.z : b.lo.z);
+        const glm::vec4 q = vp * glm::vec4(p, 1.0f);
+        const float wx = q.w * (1.0f + margin.x), wy = q.w * (1.0f + margin.y);
+        const uint32_t out = (q.x > wx) | (q.x < -wx) << 1 | (q.y > wy) << 2 | (q.y < -wy) << 3 |
+                             (q.z > q.w) << 4 | (q.z < -q.w) << 5;
+        all &= out;
+        *w_min = std::min(*w_min, q.w);
+    }
+    return all != 0;
+}
+
+// Every vertex normal n of the cluster faces away from every point p of its box:
+// n . (eye - p) < 0. A placed point's normal blends these with weights >= 0 (Gouraud), so it
+// faces away too and the size rule gives it size 0.
+bool faces_away(const PointClusters& c, uint32_t k, const Box& b, const float* normals,
+                const glm::vec3& eye) {
+    const float scale = glm::length(eye - 0.5f * (b.lo + b.hi)) + glm::length(b.hi - b.lo);
+    for (uint32_t j = c.vertex_begin[k]; j < c.vertex_begin[k + 1]; ++j) {
+        const glm::vec3 n = glm::make_vec3(vertex(normals, c.vertices[j]));
+        const glm::vec3 nearest(n.x >= 0.0f ? b.lo.x : b.hi.x, n.y >= 0.0f ? b.lo.y : b.hi.y,
+                                n.z >= 0.0f ? b.lo.z : b.hi.z);
+        if (glm::dot(n, eye - nearest) >= -1e-5f * glm::length(n) * scale) return false;
+    }
+    return true;
+}
+
+// Points of cluster k whose radius bound times `stretch` passes `threshold`: the bounds are
+// non-increasing along the cluster, so the kept points are a prefix.
+uint32_t cut_length(const PointClusters& c, uint32_t k, const float* bound, float stretch,
+                    float threshold) {
+    const float* first = bound + c.point_begin[k];
+    const float* last = bound + c.point_begin[k + 1];
+    const float* cut =
+        std::partition_point(first, last, [&](float r) { return r * stretch > threshold; });
+    return uint32_t(cut - first);
+}
+
+// The largest stretch over the triangles cluster k's points and neighbours lie on, at least 1
+// (compressed radii still draw no dot past the cut), with a margin: kAreaMargin for the area
+// measure (bending between neighbours' triangles, which no triangle's area shows), 2% for
+// rounding on the edge ratios.
+constexpr float kAreaMargin = 1.1f;
+float cluster_stretch(const PointClusters& c, uint32_t k, const float* stretch, float margin) {
+    float s = 1.0f;
+    for (uint32_t j = c.reach_begin[k]; j < c.reach_begin[k + 1]; ++j)
+        s = std::max(s, stretch[c.reach[j]]);
+    return s * margin;
+}
+
+// The largest ink the size rule can ask for where lighting is at least `lit` (the ink table's
+// entries from lit's step up, so whatever shape the tone curve gives the table).
+struct InkBound {
+    float from[InkTable::kSteps + 2];
+    explicit InkBound(const SizeParams& params) {
+        const InkTable table(params);
+        from[InkTable::kSteps + 1] = 0.0f;
+        for (int i = InkTable::kSteps; i >= 0; --i) from[i] = std::max(from[i + 1], table.ink[i]);
+    }
+    float at(float lit) const {
+        const int i = lit > 0.0f ? std::min(int(lit * InkTable::kSteps), InkTable::kSteps) : 0;
+        return from[i];
+    }
+};
+
+// The least lighting (runtime/stipple_size.h's lighting()) at any point of cluster k: a point's
+// normal is a blend of the vertex normals with weights >= 0, so its N.L per light is at least
+// the least N.L of the unit vertex normals (when that is >= 0). 0 for clusters with
+// double-sided triangles (their normals turn toward the eye).
+float least_lighting(const PointClusters& c, uint32_t k, const float* normals,
+                     const SizeParams& params) {
+    if (!c.single_sided[k]) return 0.0f;
+    float lit = params.ambient;
+    for (int l = 0; l < params.light_count; ++l) {
+        float least = 1.0f;
+        for (uint32_t j = c.vertex_begin[k]; j < c.vertex_begin[k + 1] && least > 0.0f; ++j) {
+            const glm::vec3 n = glm::make_vec3(vertex(normals, c.vertices[j]));
+            const float len = glm::length(n);
+            least =
+                len > 0.0f ? std::min(least, glm::dot(n, params.light_direction[l]) / len) : 0.0f;
+        }
+        lit += params.light_intensity[l] * std::max(least - 1e-4f, 0.0f);
+    }
+    return std::min(lit, 1.0f);
+}
+
+// Radius (object units) per unit of clip w below which the size rule gives size 0 for ink at
+// most `ink`: region r^2 (focal / w)^2 N.V <= dot area / ink, with N.V <= 1.
+float cut_per_w(const SizeParams& params, float focal, float ink) {
+    if (!(ink > 0.0f)) return 1e30f;
+    const float dot_area = 0.785398163f * params.max_point_size * params.max_point_size;
+    return 0.99f * std::sqrt(dot_area / (kRegionPerRadiusSquared * ink)) / focal;
+}
+
+// The points of a bit set, ascending.
+uint32_t list_bits(const uint64_t* bits, uint32_t words, uint32_t* out) {
+    uint32_t n = 0;
+    for (uint32_t w = 0; w < words; ++w)
+        for (uint64_t b = bits[w]; b; b &= b - 1) out[n++] = w * 64 + uint32_t(__builtin_ctzll(b));
+    return n;
+}
+
+void set_bit(uint64_t* bits, uint32_t i) {
+    bits[i >> 6] |= uint64_t(1) << (i & 63);
+}
+
+// The relevant neighbours of the run points join the placed set, so Alg. 6.4 reads this
+// frame's positions.
+void place_closure(PointClusters* c, const PointsView& p) {
+    std::copy(c->run_bits.get(), c->run_bits.get() + c->word_count, c->placed_bits.get());
+    for (uint32_t j = 0; j < c->run_count; ++j) {
+        const uint32_t i = c->run[j];
+        for (uint32_t e = p.neighbour_offsets[i]; e < p.neighbour_offsets[i + 1]; ++e)
+            set_bit(c->placed_bits.get(), p.neighbours[e]);
+    }
+    c->placed_count = list_bits(c->placed_bits.get(), c->word_count, c->placed.get());
+}
+
+// Whether the first `keep` points of cluster k (ascending) reach point index `from`.
+bool cut_reaches(const PointClusters& c, uint32_t k, uint32_t keep, uint32_t from) {
+    return keep > 0 && c.order[c.point_begin[k] + keep - 1] >= from;
+}
+
+// How many of cluster k's points can draw this frame (0: culled), counted in *s.
+uint32_t cluster_keep(PointClusters* c, uint32_t k, const LodFrame& f, bool stretches, float focal,
+                      const InkBound& ink, LodStats* s) {
+    const SizeParams& params = *f.params;
+    const glm::vec2 margin(2.0f / float(std::max(f.viewport_width, 1)),
+                           2.0f / std::max(params.viewport_height, 1.0f));
+    const Box b = cluster_box(*c, k, f.vertex_positions);
+    float w_min;
+    const bool outside = outside_frustum(b, params.view_projection, margin, &w_min);
+    if (c->single_sided[k] && faces_away(*c, k, b, f.vertex_normals, params.eye)) {
+        ++s->culled_back;
+        return 0;
+    }
+    const uint32_t total = c->point_begin[k + 1] - c->point_begin[k];
+    if (outside && !cut_reaches(*c, k, total, f.size_from)) {
+        ++s->culled_frustum;
+        return 0;
+    }
+    if (!(w_min > 0.0f)) return total;
+    const float lit = least_lighting(*c, k, f.vertex_normals, params);
+    const float threshold = cut_per_w(params, focal, ink.at(lit)) * w_min;
+    uint32_t keep;
+    if (!f.relevance_update)  // the rest-pose radii as they are
+        keep = cut_length(*c, k, c->rest_bound.get(), 1.0f, threshold);
+    else if (!stretches)  // a static mesh: the bind radii
+        keep = std::max(cut_length(*c, k, c->bound.get(), 1.0f, threshold),
+                        cut_length(*c, k, c->line_bound.get(), 1.0f, threshold));
+    else
+        keep =
+            std::max(cut_length(*c, k, c->bound.get(),
+                                cluster_stretch(*c, k, c->stretch.get(), kAreaMargin), threshold),
+                     cut_length(*c, k, c->line_bound.get(),
+                                cluster_stretch(*c, k, c->edge_stretch.get(), 1.02f), threshold));
+    s->cut += keep < total;
+    if (outside && !cut_reaches(*c, k, keep, f.size_from)) {  // the cut ends before size_from
+        ++s->culled_frustum;
+        return 0;
+    }
+    return keep;
+}
+
+}  // namespace
+
+void point_clusters_select(PointClusters* c, const Asset& asset, const LodFrame& f) {
+    const SizeParams& params = *f.params;
+    const bool stretches = c->deforming && f.relevance_update;
+    if (stretches) triangle_stretch(c, asset.mesh, f.vertex_positions);
+    const float focal = focal_pixels(params);
+    const InkBound ink(params);
+    LodStats s;
+    s.clusters = c->cluster_count;
+    uint64_t* bits = c->run_bits.get();
+    std::fill(bits, bits + c->word_count, uint64_t(0));
+    for (uint32_t k = 0; k < c->cluster_count; ++k) {
+        const uint32_t keep = cluster_keep(c, k, f, stretches, focal, ink, &s);
+        for (uint32_t j = c->point_begin[k]; j < c->point_begin[k] + keep; ++j)
+            set_bit(bits, c->order[j]);
+    }
+    for (uint32_t j = 0; j < c->forced_count; ++j) set_bit(bits, c->forced[j]);
+    c->run_count = list_bits(bits, c->word_count, c->run.get());
+    place_closure(c, asset.points);
+    s.points_run = c->run_count;
+    s.points_placed = c->placed_count;
+    c->stats = s;
+}
+
+void point_clusters_clear_sizes(const PointClusters& c, float* size) {
+    for (uint32_t j = 0; j < c.run_count; ++j) size[c.run[j]] = 0.0f;
+}
+
+}  // namespace stipple

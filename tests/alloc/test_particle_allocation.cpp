@@ -1,0 +1,63 @@
+// View-dependent particles allocate nothing per frame (issue 11): the particle tree, the active
+// set, the transformed particles and the strokes all take their memory at init.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "runtime/particle_frame.h"
+#include "tests/alloc/alloc_counter.h"
+#include "tests/common/fixtures.h"
+
+using stipple::test::g_allocations;
+using stipple::test::g_counting;
+
+namespace {
+
+TEST(ParticleAllocation, ParticleFramesAllocateNothingAfterInit) {
+    stipple::Asset asset;
+    std::string error;
+    ASSERT_TRUE(stipple::test::load_baked(
+        stipple::test::baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 10000"), &asset,
+        &error))
+        << error;
+    stipple::test::HeadlessGl gl;
+    ASSERT_TRUE(gl.open(&error)) << error;
+    for (const char* name : {"painterly-long", "graftals", "two-tone"}) {
+        const stipple::ParticleStyle* style = stipple::find_particle_style(name);
+        ASSERT_NE(style, nullptr);
+        stipple::FrameConfig config;
+        stipple::particle_style_frame_config(*style, &config);
+        auto pipeline = std::make_unique<stipple::Pipeline>();
+        auto stage = std::make_unique<stipple::ParticleStage>();
+        ASSERT_TRUE(stipple::pipeline_init(pipeline.get(), asset, gl.gl(), config).ok());
+        ASSERT_TRUE(
+            stipple::particle_stage_init(stage.get(), asset, *style, config.width, config.height)
+                .ok());
+        ASSERT_TRUE(stipple::particle_stage_init_gl(stage.get(), gl.gl()).ok());
+        stipple::AnimationState state;
+        state.clip = 0;
+        stipple::pipeline_particle_frame(pipeline.get(), stage.get(), state, nullptr);
+        std::vector<uint8_t> rgba(size_t(config.width) * config.height * 4);
+        uint32_t most = 0;
+        g_allocations = 0;
+        g_counting = true;
+        for (int f = 0; f < 120; ++f) {  // walking, and zooming in from 1 to 6
+            stipple::FrameConfig view = pipeline->config;
+            view.zoom = 1.0f + 5.0f * float(f) / 119.0f;
+            ASSERT_TRUE(stipple::pipeline_set_view(pipeline.get(), view).ok());
+            state.time = float(f) / 30.0f;
+            stipple::pipeline_particle_frame(pipeline.get(), stage.get(), state, nullptr);
+            stipple::renderer_read_color(&pipeline->renderer, rgba.data());
+            most = std::max(most, stage->stats.strokes);
+        }
+        g_counting = false;
+        EXPECT_EQ(g_allocations.load(), 0) << name;
+        EXPECT_GT(most, 20u) << name << ": the frames drew strokes";
+        stipple::particle_stage_destroy(stage.get());
+        stipple::pipeline_destroy(pipeline.get());
+    }
+}
+
+}  // namespace

@@ -1,0 +1,302 @@
+// Frame checks of view-dependent particles (GI'01, runtime/particle_frame.h, issue 11): each
+// style distinct and deterministic, stroke density under zoom, persistence and fades on the
+// walk, smooth stroke orientation on a turntable.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "runtime/particle_frame.h"
+#include "tests/common/fixtures.h"
+#include "tools/image_write.h"
+
+namespace {
+
+using namespace stipple;
+using namespace stipple::test;
+
+constexpr int kW = 320, kH = 240;
+
+// A pipeline drawing one particle style of one asset, headless.
+class ParticleView {
+  public:
+    bool open(const std::string& asset_path, const char* style_name, float zoom,
+              std::string* error) {
+        if (!gl_.open(error) || !load_baked(asset_path, &asset_, error)) return false;
+        const ParticleStyle* style = find_particle_style(style_name);
+        if (!style) {
+            *error = std::string("no style ") + style_name;
+            return false;
+        }
+        FrameConfig c;
+        c.width = kW;
+        c.height = kH;
+        c.zoom = zoom;
+        c.depth_readback = true;
+        c.check_gl_errors = true;
+        particle_style_frame_config(*style, &c);
+        Status st = pipeline_init(pipeline_.get(), asset_, gl_.gl(), c);
+        if (st.ok()) st = particle_stage_init(stage_.get(), asset_, *style, kW, kH);
+        if (st.ok()) st = particle_stage_init_gl(stage_.get(), gl_.gl());
+        if (!st.ok()) *error = st.message;
+        return st.ok();
+    }
+    ~ParticleView() {
+        particle_stage_destroy(stage_.get());
+        pipeline_destroy(pipeline_.get());
+    }
+    // Draws a frame; returns its visible strokes.
+    std::vector<VisibleStroke> frame(int clip, float time) {
+        AnimationState state;
+        state.clip = clip;
+        state.time = time;
+        pipeline_particle_frame(pipeline_.get(), stage_.get(), state, nullptr);
+        rgba_.resize(size_t(kW) * kH * 4);
+        depth_.resize(size_t(kW) * kH);
+        scratch_.resize(size_t(kW) * kH * 4);
+        renderer_read_color(&pipeline_->renderer, rgba_.data());
+        renderer_read_depth(&pipeline_->renderer, scratch_.data(), depth_.data());
+        std::vector<VisibleStroke> v(stage_->stroke_count);
+        v.resize(particle_visible_strokes(*pipeline_, *stage_, depth_.data(), v.data(),
+                                          uint32_t(v.size())));
+        return v;
+    }
+    size_t object_pixels() const {
+        return size_t(
+            std::count_if(depth_.begin(), depth_.end(), [](float d) { return d < 1.0f; }));
+    }
+    void set_view(float yaw, float zoom) {
+        FrameConfig v = pipeline_->config;
+        v.yaw_degrees = yaw;
+        v.zoom = zoom;
+        ASSERT_TRUE(pipeline_set_view(pipeline_.get(), v).ok());
+    }
+    const std::vector<uint8_t>& rgba() const { return rgba_; }
+    const Pipeline& pipeline() const { return *pipeline_; }
+    const ParticleStage& stage() const { return *stage_; }
+
+  private:
+    HeadlessGl gl_;
+    Asset asset_;
+    std::unique_ptr<Pipeline> pipeline_ = std::make_unique<Pipeline>();
+    std::unique_ptr<ParticleStage> stage_ = std::make_unique<ParticleStage>();
+    std::vector<uint8_t> rgba_;
+    std::vector<float> depth_, scratch_;
+};
+
+size_t changed_pixels(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+    size_t n = 0;
+    for (size_t i = 0; i + 3 < a.size(); i += 4)
+        n += std::abs(int(a[i]) - int(b[i])) + std::abs(int(a[i + 1]) - int(b[i + 1])) +
+                 std::abs(int(a[i + 2]) - int(b[i + 2])) >
+             24;
+    return n;
+}
+
+const char* kStyles[] = {"painterly-long", "painterly-dab", "sketch",   "cartoon",
+                         "graftals",       "charcoal",      "two-tone", "ink"};
+
+void styles_are_distinct_and_deterministic(const std::string& asset, int clip, float time) {
+    std::vector<std::vector<uint8_t>> frames;
+    for (const char* name : kStyles) {
+        ParticleView v;
+        std::string error;
+        ASSERT_TRUE(v.open(asset, name, 1.0f, &error)) << error;
+        for (int f = 0; f < 6; ++f) v.frame(clip, time);  // the fades settle
+        const std::vector<VisibleStroke> strokes = v.frame(clip, time);
+        EXPECT_GT(strokes.size(), 3u) << name;
+        EXPECT_EQ(pipeline_gl_errors(v.pipeline()).count, 0u) << name;
+        frames.push_back(v.rgba());
+        if (const char* dir = std::getenv("STIPPLE_PARTICLE_PNG")) {  // to look at them
+            std::string e;
+            image::write_png((std::string(dir) + "/" + name + ".png").c_str(), kW, kH,
+                             v.rgba().data(), true, &e);
+        }
+        ParticleView again;
+        ASSERT_TRUE(again.open(asset, name, 1.0f, &error)) << error;
+        for (int f = 0; f < 7; ++f) again.frame(clip, time);
+        EXPECT_EQ(again.rgba(), v.rgba()) << name << " is not deterministic";
+    }
+    for (size_t a = 0; a < frames.size(); ++a)
+        for (size_t b = a + 1; b < frames.size(); ++b)
+            EXPECT_GT(changed_pixels(frames[a], frames[b]), 300u)
+                << kStyles[a] << " and " << kStyles[b] << " look alike";
+}
+
+TEST(ParticleFrames, EveryStyleIsDistinctAndDeterministicOnTheWalk) {
+    styles_are_distinct_and_deterministic(
+        baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 20000"), 0, 0.5f);
+}
+
+TEST(ParticleFrames, EveryStyleIsDistinctAndDeterministicOnTheBunny) {
+    styles_are_distinct_and_deterministic(
+        baked_asset("assets/StanfordBunny/stanford-bunny.obj", ""), -1, 0.0f);
+}
+
+// Visible strokes per 1,000 object pixels.
+double density(const std::vector<VisibleStroke>& strokes, size_t object_pixels) {
+    return 1000.0 * double(strokes.size()) / double(std::max<size_t>(object_pixels, 1));
+}
+
+TEST(ParticleFrames, StrokeDensityHoldsUnderZoom) {
+    ParticleView v;
+    std::string error;
+    ASSERT_TRUE(v.open(baked_asset("assets/StanfordBunny/stanford-bunny.obj", "--points 262144"),
+                       "painterly-long", 1.0f, &error))
+        << error;
+    std::vector<double> d;
+    for (float zoom : {1.0f, 2.0f, 4.0f, 8.0f}) {
+        v.set_view(0.0f, zoom);
+        std::vector<VisibleStroke> s;
+        for (int f = 0; f < 6; ++f) s = v.frame(-1, 0.0f);
+        d.push_back(density(s, v.object_pixels()));
+        std::printf("zoom %g: %zu strokes over %zu px: %.2f per 1000 px (%u active)\n", zoom,
+                    s.size(), v.object_pixels(), d.back(), v.stage().stats.active);
+    }
+    const double mean = (d[0] + d[1] + d[2] + d[3]) / 4.0;
+    for (double x : d) EXPECT_NEAR(x, mean, 0.2 * mean);
+}
+
+// Strokes of frame b that frame a had too, by particle id.
+double persistence(const std::vector<VisibleStroke>& a, const std::vector<VisibleStroke>& b) {
+    std::map<uint32_t, int> in_b;
+    for (const VisibleStroke& s : b) in_b[s.id] = 1;
+    size_t kept = 0;
+    for (const VisibleStroke& s : a) kept += in_b.count(s.id);
+    return a.empty() ? 1.0 : double(kept) / double(a.size());
+}
+
+// The strokes stage 4 drew (before the GPU's depth test), as the strokes CSV lists them.
+std::vector<VisibleStroke> drawn_strokes(const ParticleStage& s) {
+    std::vector<VisibleStroke> out;
+    for (uint32_t k = 0; k < s.stroke_count; ++k) {
+        const StrokeInstance& st = s.strokes[k];
+        out.push_back({s.stroke_id[k], st.x, st.y, st.angle, st.length, st.width, st.alpha});
+    }
+    return out;
+}
+
+struct Coherence {
+    double worst = 1.0;
+    size_t popped_in = 0, popped_out = 0, strokes = 0;
+    void add(const std::vector<VisibleStroke>& last, const std::vector<VisibleStroke>& now,
+             float opacity) {
+        worst = std::min(worst, persistence(last, now));
+        std::map<uint32_t, float> before, after;
+        for (const VisibleStroke& s : last) before[s.id] = s.alpha;
+        for (const VisibleStroke& s : now) after[s.id] = s.alpha;
+        const float third = opacity / 3.0f + 1e-4f;  // a third of the style's full opacity
+        for (const VisibleStroke& s : now) popped_in += !before.count(s.id) && s.alpha > third;
+        for (const VisibleStroke& s : last) popped_out += !after.count(s.id) && s.alpha > third;
+        strokes += now.size();
+    }
+};
+
+TEST(ParticleFrames, StrokesPersistAndFadeOnTheWalk) {
+    ParticleView v;
+    std::string error;
+    ASSERT_TRUE(v.open(baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 20000"),
+                       "painterly-long", 1.0f, &error))
+        << error;
+    for (int f = 0; f < 6; ++f) v.frame(0, 0.0f);
+    std::vector<VisibleStroke> last_seen = v.frame(0, 0.0f);
+    std::vector<VisibleStroke> last_drawn = drawn_strokes(v.stage());
+    const float opacity = v.stage().style.opacity;
+    Coherence drawn, seen;
+    for (int f = 1; f <= 60; ++f) {  // two seconds at 30 fps
+        const std::vector<VisibleStroke> now_seen = v.frame(0, float(f) / 30.0f);
+        const std::vector<VisibleStroke> now_drawn = drawn_strokes(v.stage());
+        drawn.add(last_drawn, now_drawn, opacity);
+        seen.add(last_seen, now_seen, opacity);
+        last_drawn = now_drawn;
+        last_seen = now_seen;
+    }
+    std::printf("drawn: worst persistence %.3f, popped in %zu, out %zu of %zu strokes\n",
+                drawn.worst, drawn.popped_in, drawn.popped_out, drawn.strokes);
+    std::printf("seen (after the depth test): worst %.3f, popped in %zu, out %zu of %zu\n",
+                seen.worst, seen.popped_in, seen.popped_out, seen.strokes);
+    EXPECT_GE(drawn.worst, 0.95);
+    EXPECT_EQ(drawn.popped_in, 0u);
+    EXPECT_EQ(drawn.popped_out, 0u);
+}
+
+TEST(ParticleFrames, StrokeOrientationTurnsSmoothlyOnATurntable) {
+    ParticleView v;
+    std::string error;
+    ASSERT_TRUE(v.open(baked_asset("assets/StanfordBunny/stanford-bunny.obj", ""), "painterly-long",
+                       1.0f, &error))
+        << error;
+    for (int f = 0; f < 6; ++f) v.frame(-1, 0.0f);
+    std::map<uint32_t, VisibleStroke> last;
+    for (const VisibleStroke& s : v.frame(-1, 0.0f)) last[s.id] = s;
+    float worst = 0.0f;
+    size_t compared = 0;
+    for (int f = 1; f <= 45; ++f) {
+        v.set_view(2.0f * float(f), 1.0f);
+        std::map<uint32_t, VisibleStroke> now;
+        for (const VisibleStroke& s : v.frame(-1, 0.0f)) {
+            now[s.id] = s;
+            auto it = last.find(s.id);
+            // Strokes foreshortened to a dab (length under 1.5 widths) show no direction.
+            if (it == last.end() || std::min(s.size, it->second.size) < 1.5f * s.width) continue;
+            // A stroke is a line: its direction counts modulo 180 degrees.
+            float d = std::fmod(std::abs(s.angle - it->second.angle), 3.14159265f);
+            d = std::min(d, 3.14159265f - d);
+            worst = std::max(worst, d);
+            ++compared;
+        }
+        last = now;
+    }
+    std::printf("worst turn %.1f degrees over %zu stroke pairs\n", worst * 57.2958f, compared);
+    EXPECT_GT(compared, 1000u);
+    EXPECT_LE(worst * 57.2958f, 20.0f);
+}
+
+// stipple-play --style NAME --strokes-out: the strokes CSV (id,x,y,angle,size,width,alpha,
+// visible) lists what stage 4 drew; particle names are one-line errors where they do not fit.
+TEST(ParticleFrames, PlayerWritesTheStrokesCsv) {
+    const std::string asset = baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 20000");
+    ScratchDir dir;
+    std::string log;
+    ASSERT_EQ(run(play_checked() + " " + asset + " --out " + dir.file("p") +
+                      " --frames 3 --size 320x240 --no-apng --style two-tone --strokes-out",
+                  &log),
+              0)
+        << log;
+    std::ifstream csv(dir.file("p") + "/strokes_0002.csv");
+    std::string line;
+    ASSERT_TRUE(std::getline(csv, line));
+    EXPECT_EQ(line, "id,x,y,angle,size,width,alpha,visible");
+    size_t rows = 0, visible = 0;
+    while (std::getline(csv, line)) {
+        unsigned id = 0;
+        float x, y, angle, size, width, alpha;
+        int seen = 0;
+        ASSERT_EQ(std::sscanf(line.c_str(), "%u,%f,%f,%f,%f,%f,%f,%d", &id, &x, &y, &angle, &size,
+                              &width, &alpha, &seen),
+                  8)
+            << line;
+        EXPECT_LT(id, 20000u);
+        EXPECT_TRUE(x >= 0 && x < 320 && y >= 0 && y < 240) << line;
+        EXPECT_TRUE(alpha > 0 && alpha <= 1.0f) << line;
+        ++rows;
+        visible += seen;
+    }
+    EXPECT_GT(rows, 50u);
+    EXPECT_GT(visible, rows / 3);
+    for (const char* bad : {"--strokes-out", "--style painterly",
+                            "--style ink --strokes-out --path gpu --dots-out"}) {
+        EXPECT_EQ(
+            run(bin("stipple-play") + " " + asset + " --out " + dir.file("x") + " " + bad, &log), 1)
+            << bad << ": " << log;
+        EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 1) << bad << ": " << log;
+    }
+}
+
+}  // namespace
