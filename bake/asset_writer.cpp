@@ -234,10 +234,20 @@ std::vector<uint8_t> looks_section(const BakedLooks& l) {
     return b.v;
 }
 
+// PTRE: the point count, then one parent per point (runtime/asset_format.h).
+std::vector<uint8_t> particles_section(const std::vector<uint32_t>& parents) {
+    std::vector<uint8_t> b((parents.size() + 1) * 4);
+    const uint32_t count = uint32_t(parents.size());
+    std::memcpy(b.data(), &count, 4);
+    if (count) std::memcpy(b.data() + 4, parents.data(), parents.size() * 4);
+    return b;
+}
+
 }  // namespace
 
 std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points,
-                                  const BakedStrokes& strokes, const BakedLooks& looks) {
+                                  const BakedStrokes& strokes, const BakedLooks& looks,
+                                  const std::vector<uint32_t>& particle_parents) {
     struct Section {
         uint32_t tag;
         std::vector<uint8_t> bytes;
@@ -259,6 +269,8 @@ std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& p
         sections.push_back({format::kTagSides, sides_section(scene)});
     if (!strokes.empty()) sections.push_back({format::kTagStrokes, strokes_section(strokes)});
     if (!looks.empty()) sections.push_back({format::kTagLooks, looks_section(looks)});
+    if (!particle_parents.empty() && particle_parents.size() == points.size())
+        sections.push_back({format::kTagParticles, particles_section(particle_parents)});
 
     std::vector<format::SectionEntry> table(sections.size());
     uint64_t offset = sizeof(format::FileHeader) + table.size() * sizeof(format::SectionEntry);

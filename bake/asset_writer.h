@@ -15,9 +15,12 @@ namespace stipple::bake {
 // Builds the whole file in memory (byte-identical for identical inputs). A STRK section is
 // written only when `strokes` holds any, a LOOK section only when `looks` says anything: an
 // asset without either is the same bytes as before those sections existed.
+// A PTRE section (the particle tree, docs/particles.md) only when `particle_parents` holds one
+// parent per point.
 std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points,
                                   const BakedStrokes& strokes = BakedStrokes(),
-                                  const BakedLooks& looks = BakedLooks());
+                                  const BakedLooks& looks = BakedLooks(),
+                                  const std::vector<uint32_t>& particle_parents = {});
 
 // Writes to `path` through a uniquely named temporary file, fsync and a rename
 // (bake/atomic_file.h), so a failed bake never leaves a partial asset or a temp file behind.

@@ -232,11 +232,14 @@ BakeError check_ply(const std::string& path, uint64_t file_size) {
 }
 
 // OBJ's "v x y z r g b" and "vc r g b": OpenMesh 9's reader casts each colour value times 255
-// to a byte, undefined outside [0, 1], and gives a "vc" colour to the last vertex read, out
-// of bounds before the first (UBSan, found by tests/fuzz/fuzz_mesh_import.cpp). Empty unless
-// the line is such a colour (values read as the reader reads them: floats from a stream);
-// *vertices counts the vertex lines the reader accepts.
-std::string obj_colour_error(const std::string& line, uint64_t* vertices) {
+// to a byte, undefined outside [0, 1], and writes a "vc" colour out of bounds when the
+// vertex it belongs to has not been read (UBSan and ASan, tests/fuzz/fuzz_mesh_import.cpp). Empty
+// unless the line is such a colour (values read as the reader reads them: floats from a stream);
+// counts[0] counts the vertex lines the reader accepts, counts[1] the "vc" lines, counts[2]
+// the "v" lines it does not accept: the k-th "vc" colours a vertex the reader indexes by
+// k, so there must be k vertices before it and no malformed vertex line (that still moves
+// the reader's index: found by the fuzzer).
+std::string obj_colour_error(const std::string& line, uint64_t counts[3]) {
     std::istringstream words(line);
     std::string key;
     words >> key;
@@ -244,8 +247,9 @@ std::string obj_colour_error(const std::string& line, uint64_t* vertices) {
     float value[6];
     int count = 0;
     while (count < 6 && words >> value[count]) ++count;
-    if (key == "v" && count >= 3) ++*vertices;
-    if (key == "vc" && *vertices == 0) return "a vertex colour before any vertex";
+    if (key == "v") ++counts[count >= 3 ? 0 : 2];
+    if (key == "vc" && (++counts[1] > counts[0] || counts[2] > 0))
+        return "a vertex colour before its vertex, or after a vertex line that is not one";
     const int first = key == "v" ? 3 : 0;
     if (key == "v" && count < 6) return std::string();
     for (int k = first; k < count && k < first + 3; ++k)
@@ -259,15 +263,14 @@ std::string obj_colour_error(const std::string& line, uint64_t* vertices) {
 BakeError check_obj(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::string line;
-    uint64_t vertices = 0;
+    uint64_t counts[3] = {0, 0, 0};
     for (uint64_t n = 1; std::getline(in, line); ++n) {
-        const std::string colour = obj_colour_error(line, &vertices);
+        const std::string colour = obj_colour_error(line, counts);
         if (!colour.empty())
             return malformed_input("OBJ line " + std::to_string(n) + ": " + colour);
-        if (line.size() < 2 || line[0] != 'f' || !std::isspace(static_cast<unsigned char>(line[1])))
-            continue;
-        std::istringstream words(line.substr(1));
+        std::istringstream words(line);  // keywords as the reader reads them: after blanks
         std::string corner;
+        if (!(words >> corner) || corner != "f") continue;
         while (words >> corner) {
             if (corner[0] == '/')
                 return malformed_input("OBJ line " + std::to_string(n) +

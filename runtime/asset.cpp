@@ -290,6 +290,8 @@ Status parse_version3_sections(const uint8_t* bytes, const format::SectionEntry*
     if (st.ok() && sec[kSectionStrokes])
         st = detail::parse_strokes(reader(sec[kSectionStrokes]), a);
     if (st.ok() && sec[kSectionLooks]) st = detail::parse_looks(reader(sec[kSectionLooks]), a);
+    if (st.ok() && sec[kSectionParticles])
+        st = detail::parse_particles(reader(sec[kSectionParticles]), a);
     return st;
 }
 
@@ -335,9 +337,9 @@ Status parse(const uint8_t* bytes, size_t size, DecodeBudget* budget, Asset* a) 
 #endif
     }
     const uint32_t tags[kSectionCount] = {
-        format::kTagMesh,    format::kTagSkin,  format::kTagClips,  format::kTagPointStream,
-        format::kTagEdges,   format::kTagMorph, format::kTagBounds, format::kTagSides,
-        format::kTagStrokes, format::kTagLooks};
+        format::kTagMesh,    format::kTagSkin,  format::kTagClips,    format::kTagPointStream,
+        format::kTagEdges,   format::kTagMorph, format::kTagBounds,   format::kTagSides,
+        format::kTagStrokes, format::kTagLooks, format::kTagParticles};
     const format::SectionEntry* sec[kSectionCount];
     for (int i = 0; i < kSectionCount; ++i) {
         // Version 2 had no BNDS, SIDE, STRK or LOOK (kSectionBounds and after); like any
@@ -461,8 +463,8 @@ int find_clip(const Asset& asset, const char* name) {
 }
 
 const char* section_name(int section) {
-    static const char* const kNames[kSectionCount] = {"MESH", "SKIN", "CLIP", "PNTQ", "EDGE",
-                                                      "MRPH", "BNDS", "SIDE", "STRK", "LOOK"};
+    static const char* const kNames[kSectionCount] = {
+        "MESH", "SKIN", "CLIP", "PNTQ", "EDGE", "MRPH", "BNDS", "SIDE", "STRK", "LOOK", "PTRE"};
     return section >= 0 && section < kSectionCount ? kNames[section] : "?";
 }
 

@@ -112,6 +112,7 @@ enum : int {
     kSectionSides,
     kSectionStrokes,
     kSectionLooks,
+    kSectionParticles,
     kSectionCount
 };
 
@@ -130,6 +131,9 @@ struct Asset {
     BoundsView bounds;       // present = false for version-2 assets
     StrokesView strokes;     // empty if the asset has no STRK section
     LooksView looks;         // empty if the asset has no LOOK section
+    // The particle tree (PTRE section, docs/particles.md): parent per point, each before its
+    // child or format::kNoParticleParent; nullptr without PTRE (the runtime then builds it).
+    const uint32_t* particle_parent = nullptr;
     uint16_t version = 0;
     size_t section_size[kSectionCount] = {};  // bytes per section, kSection* order (0: absent)
 

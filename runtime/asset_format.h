@@ -28,6 +28,7 @@ constexpr uint32_t kTagMorph = fourcc('M', 'R', 'P', 'H');        // morph targe
 constexpr uint32_t kTagBounds = fourcc('B', 'N', 'D', 'S');       // v3: up axis, rest/clip bounds
 constexpr uint32_t kTagSides = fourcc('S', 'I', 'D', 'E');        // v3: double-sided triangle runs
 constexpr uint32_t kTagStrokes = fourcc('S', 'T', 'R', 'K');      // paintstrokes (GI'98)
+constexpr uint32_t kTagParticles = fourcc('P', 'T', 'R', 'E');    // the particle tree (GI'01)
 constexpr uint32_t kTagLooks = fourcc('L', 'O', 'O', 'K');        // colours, parts, creases
 constexpr uint32_t kNoFace = 0xFFFFFFFFu;                         // second face of a boundary edge
 
@@ -155,6 +156,12 @@ struct LooksHeader {  // 20 bytes
 static_assert(sizeof(LooksHeader) == 20, "looks header layout");
 constexpr uint8_t kLookPartTransparent = 1;  // thesis §7.4: the part draws no fill
 constexpr uint8_t kLookPartKnownFlags = kLookPartTransparent;
+
+// PTRE section (optional; version 3 files may carry it): the particle tree of view-dependent
+// particles (runtime/particle_tree.h, docs/particles.md).
+//   u32 point_count (= the PNTQ section's), u32 parent[point_count]
+// parent[i] is a point before i (coarser), or kNoParticleParent for a root; point 0 is a root.
+constexpr uint32_t kNoParticleParent = 0xFFFFFFFFu;
 
 // Section checksums: crc32() of runtime/crc32.h.
 

@@ -58,5 +58,8 @@ Status parse_strokes(Reader r, Asset* a);
 // LOOK section (runtime/asset_looks.cpp): point colours, parts, creases, validated in place
 // against the mesh and point hierarchy already in `a` (parse it after them).
 Status parse_looks(Reader r, Asset* a);
+// PTRE section (runtime/asset_particles.cpp): the particle tree, validated against the point
+// hierarchy already in `a` (a parent precedes its child).
+Status parse_particles(Reader r, Asset* a);
 
 }  // namespace stipple::detail

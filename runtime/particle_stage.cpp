@@ -5,6 +5,8 @@
 
 namespace stipple {
 
+static_assert(kNoParent == format::kNoParticleParent, "one root marker");
+
 namespace {
 
 bool style_valid(const ParticleStyle& s) {
@@ -54,13 +56,19 @@ Status particle_stage_init(ParticleStage* s, const Asset& asset, const ParticleS
     s->style = style;
     s->width = width;
     s->height = height;
-    s->parent = make_buffer<uint32_t>(n);
-    Buffer<float> bind = make_buffer<float>(size_t(n) * 3);
-    if (!s->parent || !bind)
-        return make_status(StatusCode::out_of_memory, "out of memory for %u particles", n);
-    bind_positions(asset, bind.get());
-    Status st = particle_parents(n, bind.get(), INFINITY, s->parent.get());
-    if (st.ok()) st = particle_tree_build(&s->tree, n, s->parent.get());
+    // The tree the bake stored (PTRE), else the same rule run here (runtime/particle_tree.h).
+    const uint32_t* parents = asset.particle_parent;
+    Status st;
+    if (!parents) {
+        s->parent = make_buffer<uint32_t>(n);
+        Buffer<float> bind = make_buffer<float>(size_t(n) * 3);
+        if (!s->parent || !bind)
+            return make_status(StatusCode::out_of_memory, "out of memory for %u particles", n);
+        bind_positions(asset, bind.get());
+        st = particle_parents(n, bind.get(), INFINITY, s->parent.get());
+        parents = s->parent.get();
+    }
+    if (st.ok()) st = particle_tree_build(&s->tree, n, parents);
     if (st.ok()) st = particle_set_init(&s->set, s->tree, style.fade_frames);
     if (!st.ok()) return st;
     s->bin_count = particle_bin_count(width, height, style);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -23,6 +24,7 @@
 #include "runtime/asset.h"
 #include "runtime/asset_format.h"
 #include "runtime/asset_limits.h"
+#include "runtime/particle_tree.h"
 #include "tools/bake_log.h"
 #include "tools/cli_options.h"
 #include "tools/json_line.h"
@@ -70,6 +72,8 @@ const char* kUsage =
     "  --transparent N[,N...]  glTF materials or meshes drawn by stipples only (no fill),\n"
     "                   besides alphaMode BLEND materials; implies --looks. An unknown name\n"
     "                   is an error\n"
+    "  --particles      write the PTRE section: the particle tree of view-dependent particles\n"
+    "                   (docs/particles.md; without it the runtime builds the tree at load)\n"
     "  --quiet          no warnings and no summary; the progress bar (on stderr, for bakes over\n"
     "                   a second) shows only when stderr is a terminal (default off)\n"
     "  -h, --help       this text\n";
@@ -88,6 +92,7 @@ struct Options {
     bool fur_options = false;  // any --fur-* given
     std::string strokes;
     bool looks = false;
+    bool particles = false;  // --particles: a PTRE section
     std::vector<std::string> transparent;
 };
 
@@ -138,9 +143,30 @@ void add_stroke_options(stipple::cli::Parser& p, Options* o) {
         .text("--strokes", &o->strokes);
 }
 
+// The particle tree (--particles): the runtime's own rule (runtime/particle_tree.h) over the
+// points' bind-pose positions, so a stored tree is the one the runtime would build.
+std::vector<uint32_t> particle_tree(const stipple::bake::RawScene& scene,
+                                    const stipple::bake::PointHierarchy& points) {
+    const size_t n = points.size();
+    std::vector<float> bind(n * 3);
+    for (size_t i = 0; i < n; ++i) {
+        const uint32_t* t = &scene.indices[size_t(points.host_triangle[i]) * 3];
+        const float u = points.bary_u[i], v = points.bary_v[i], w = 1.0f - u - v;
+        for (int k = 0; k < 3; ++k)
+            bind[i * 3 + k] = u * scene.positions[size_t(t[0]) * 3 + k] +
+                              v * scene.positions[size_t(t[1]) * 3 + k] +
+                              w * scene.positions[size_t(t[2]) * 3 + k];
+    }
+    std::vector<uint32_t> parent(n);
+    if (!stipple::particle_parents(uint32_t(n), bind.data(), INFINITY, parent.data()).ok())
+        die("out of memory for the particle tree");
+    return parent;
+}
+
 // --looks, --transparent NAME[,NAME...].
 void add_look_options(stipple::cli::Parser& p, Options* o) {
     p.flag("--looks", &o->looks)
+        .flag("--particles", &o->particles)
         .custom("--transparent", [&p, o](const std::string& name, const std::string& v) {
             size_t at = 0;
             while (at <= v.size()) {
@@ -401,7 +427,9 @@ int main(int argc, char** argv) {
     on_progress("encode", 0, &progress);
     BakedLooks looks;
     if (o.looks) looks = bake_looks(scene, points, LooksConfig{true, o.normals.crease_degrees});
-    const std::vector<uint8_t> bytes = encode_asset(scene, points, strokes, looks);
+    const std::vector<uint8_t> bytes =
+        encode_asset(scene, points, strokes, looks,
+                     o.particles ? particle_tree(scene, points) : std::vector<uint32_t>());
     on_progress("verify", 0, &progress);
     // Read the asset back with the runtime's validating loader before writing it, so a
     // bake never leaves an asset the runtime would refuse.

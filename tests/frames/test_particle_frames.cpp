@@ -299,4 +299,29 @@ TEST(ParticleFrames, PlayerWritesTheStrokesCsv) {
     }
 }
 
+// stipple-bake --particles stores the tree (PTRE); the runtime draws the same frames from it
+// as from the tree it builds itself.
+TEST(ParticleFrames, TheStoredTreeIsTheOneTheRuntimeBuilds) {
+    Asset stored;
+    std::string error;
+    ASSERT_TRUE(
+        load_baked(baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 20000 --particles"),
+                   &stored, &error))
+        << error;
+    ASSERT_NE(stored.particle_parent, nullptr);
+    ParticleStage built;  // the runtime's own tree, from an asset without PTRE
+    Asset plain;
+    ASSERT_TRUE(
+        load_baked(baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 20000"), &plain, &error))
+        << error;
+    ASSERT_EQ(plain.particle_parent, nullptr);
+    ASSERT_TRUE(
+        particle_stage_init(&built, plain, *find_particle_style("painterly-long"), kW, kH).ok());
+    uint32_t same = 0;
+    for (uint32_t i = 0; i < plain.points.point_count; ++i)
+        same += built.tree.parent[i] == stored.particle_parent[i];
+    EXPECT_GE(same, plain.points.point_count - plain.points.point_count / 1000);
+    particle_stage_destroy(&built);
+}
+
 }  // namespace
