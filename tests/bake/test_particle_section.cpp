@@ -56,7 +56,7 @@ TEST(AssetParticles, TheStoredTreeLoads) {
     const std::vector<uint8_t> none = encoded({});
     Asset b;
     ASSERT_TRUE(load_asset_memory(none.data(), none.size(), &b).ok());
-    EXPECT_EQ(b.particle_parent, nullptr);      // no PTRE: the runtime builds the tree
+    EXPECT_EQ(b.particle_parent, nullptr);  // no PTRE: the runtime builds the tree
     EXPECT_GT(bytes.size(), none.size());
 }
 
