@@ -452,6 +452,11 @@ void pipeline_update(Pipeline* p, const AnimationState& state, StageTimes* t) {
     p->points_drawn = compact_drawn_points(p, lod ? baked : 0, baked + p->refined_count);
     p->dots_coloured = style_dot_colours(&p->style, a, p->config, p->size.get(), refined_hosts(*p));
     if (t) t->size += ms_since(&clock);
+    pipeline_line_and_stroke_stages(p, t, &clock);
+}
+
+void pipeline_line_and_stroke_stages(Pipeline* p, StageTimes* t, StageClock::time_point* clock) {
+    const Asset& a = *p->asset;
     p->lines_drawn = 0;
     const bool creases = p->config.creases && a.looks.crease_count > 0;  // thesis §8.2
     if ((p->config.silhouettes && a.edges.edge_count > 0) || creases)
@@ -464,9 +469,9 @@ void pipeline_update(Pipeline* p, const AnimationState& state, StageTimes* t) {
         creases ? crease_lines(a.looks, p->triangle_front.get(), p->vertex_positions.get(),
                                p->style.crease_lines.get())
                 : 0;
-    if (t) t->silhouette += ms_since(&clock);
+    if (t) t->silhouette += ms_since(clock);
     stroke_stage_update(&p->strokes, a, pipeline_stroke_input(*p), p->config.stroke_lod_px);
-    if (t) t->strokes += ms_since(&clock);
+    if (t) t->strokes += ms_since(clock);
 }
 
 void pipeline_set_camera(Pipeline* p, const glm::mat4& view, const glm::mat4& projection,

@@ -17,6 +17,10 @@ inline void expect_ran(bool ran) {
     (void)ran;
 }
 
+// The stages after the points: silhouette and crease lines (thesis §3.2, §8.2) and the
+// paintstrokes (GI'98), for the CPU and the GPU path alike; times from *clock.
+void pipeline_line_and_stroke_stages(Pipeline* p, StageTimes* t, StageClock::time_point* clock);
+
 // Samples (and blends) the pose, then morphs and skins the mesh into
 // p->vertex_positions/normals; static meshes are copied. Adds the sample and skin times to
 // `t` (when not null), measured from *clock, which it moves on.

@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "runtime/frame_pipeline.h"
+#include "runtime/frame_pose.h"
 #include "runtime/silhouette.h"
 #include "runtime/stage_clock.h"
 
@@ -333,22 +334,7 @@ void gpu_path_update(Pipeline* p, StageTimes* t) {
     p->refinement_stats = RefinementStats();
     p->points_drawn = a.points.point_count;  // submitted; the dots shader culls size 0
     p->dots_coloured = false;                // dots take the ink colour on this path
-    p->lines_drawn = 0;
-    // The lines as pipeline_update draws them: silhouettes and crease lines (thesis §3.2, §8.2).
-    const bool creases = p->config.creases && a.looks.crease_count > 0;
-    if ((p->config.silhouettes && a.edges.edge_count > 0) || creases)
-        triangle_facing(a.mesh.triangle_count, a.mesh.indices, p->vertex_positions.get(),
-                        p->size_params.eye, p->triangle_front.get());
-    if (p->config.silhouettes && a.edges.edge_count > 0)
-        p->lines_drawn = silhouette_lines(a.edges, p->triangle_front.get(),
-                                          p->vertex_positions.get(), p->lines.get());
-    p->style.creases_drawn =
-        creases ? crease_lines(a.looks, p->triangle_front.get(), p->vertex_positions.get(),
-                               p->style.crease_lines.get())
-                : 0;
-    if (t) t->silhouette += ms_since(&clock);
-    stroke_stage_update(&p->strokes, a, pipeline_stroke_input(*p), p->config.stroke_lod_px);
-    if (t) t->strokes += ms_since(&clock);
+    pipeline_line_and_stroke_stages(p, t, &clock);
 }
 
 void gpu_path_draw_points(Pipeline* p) {
