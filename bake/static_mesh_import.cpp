@@ -232,27 +232,23 @@ BakeError check_ply(const std::string& path, uint64_t file_size) {
 }
 
 // OBJ's "v x y z r g b" and "vc r g b": OpenMesh 9's reader casts each colour value times 255
-// to a byte, undefined outside [0, 1], and writes a "vc" colour out of bounds when the
-// vertex it belongs to has not been read (UBSan and ASan, tests/fuzz/fuzz_mesh_import.cpp). Empty
-// unless the line is such a colour (values read as the reader reads them: floats from a stream);
-// counts[0] counts the vertex lines the reader accepts, counts[1] the "vc" lines, counts[2]
-// the "v" lines it does not accept: the k-th "vc" colours a vertex the reader indexes by
-// k, so there must be k vertices before it and no malformed vertex line (that still moves
-// the reader's index: found by the fuzzer).
-std::string obj_colour_error(const std::string& line, uint64_t counts[3]) {
+// to a byte, undefined outside [0, 1], and writes "vc" colours past the colour array (UBSan
+// and ASan, tests/fuzz/fuzz_mesh_import.cpp: before any vertex, with more "vc" than "v"
+// lines, after a malformed "v" line, and in a case with k vertices before the k-th "vc").
+// Where a "vc" colour goes is not known, so "vc" lines, an extension no bundled model uses,
+// are refused. Empty unless the line is such a colour (values read as the reader reads
+// them: floats from a stream).
+std::string obj_colour_error(const std::string& line) {
     std::istringstream words(line);
     std::string key;
     words >> key;
-    if (key != "v" && key != "vc") return std::string();
+    if (key == "vc") return "vertex colour lines (vc) are not supported";
+    if (key != "v") return std::string();
     float value[6];
     int count = 0;
     while (count < 6 && words >> value[count]) ++count;
-    if (key == "v") ++counts[count >= 3 ? 0 : 2];
-    if (key == "vc" && (++counts[1] > counts[0] || counts[2] > 0))
-        return "a vertex colour before its vertex, or after a vertex line that is not one";
-    const int first = key == "v" ? 3 : 0;
-    if (key == "v" && count < 6) return std::string();
-    for (int k = first; k < count && k < first + 3; ++k)
+    if (count < 6) return std::string();
+    for (int k = 3; k < 6; ++k)
         if (!(value[k] >= 0.0f && value[k] <= 1.0f)) return "a vertex colour is outside [0, 1]";
     return std::string();
 }
@@ -263,9 +259,8 @@ std::string obj_colour_error(const std::string& line, uint64_t counts[3]) {
 BakeError check_obj(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::string line;
-    uint64_t counts[3] = {0, 0, 0};
     for (uint64_t n = 1; std::getline(in, line); ++n) {
-        const std::string colour = obj_colour_error(line, counts);
+        const std::string colour = obj_colour_error(line);
         if (!colour.empty())
             return malformed_input("OBJ line " + std::to_string(n) + ": " + colour);
         std::istringstream words(line);  // keywords as the reader reads them: after blanks

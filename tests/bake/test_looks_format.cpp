@@ -76,7 +76,8 @@ std::vector<uint8_t> with_look(const std::vector<uint8_t>& bytes,
     std::memcpy(out.data(), &h, sizeof(h));
     std::memcpy(out.data() + sizeof(h), table.data(), table.size() * sizeof(table[0]));
     for (size_t i = 0; i < table.size(); ++i)
-        std::memcpy(out.data() + table[i].offset, sections[i].data(), sections[i].size());
+        if (!sections[i].empty())  // (an empty vector's data() may be null)
+            std::memcpy(out.data() + table[i].offset, sections[i].data(), sections[i].size());
     return out;
 }
 
