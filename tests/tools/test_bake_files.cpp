@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -132,6 +133,32 @@ TEST(BakeFiles, OnlyRegularFilesAreRead) {
         EXPECT_LT(seconds, 5.0) << c.name;  // refused up front, not read until memory runs out
         EXPECT_NE(log.find(c.words), std::string::npos) << c.name << ": " << log;
     }
+}
+
+// ASCII PLY bodies OpenMesh would misread (fuzz finding: 12 GB from an "end_header 0" line
+// and a face index past int) are refused before it reads them, each with a one-line error.
+TEST(BakeFiles, PlyBodiesOpenMeshWouldMisreadAreRefused) {
+    ScratchDir dir;
+    const std::string head =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1\nproperty list uchar int vertex_indices\n";
+    const std::string body = "0 0 0\n1 0 0\n0 1 0\n";
+    const std::pair<const char*, std::string> cases[] = {
+        {"end_header line has more", head + "end_header 0\n" + body + "3 0 1 2\n"},
+        {"not a number of its type", head + "end_header\n" + body + "3 0 1 11111111110\n"},
+        {"not a number of its type", head + "end_header\n" + body + "300 0 1 2\n"}};
+    for (const auto& c : cases) {
+        write_text(dir.file("bad.ply"), c.second);
+        std::string log;
+        EXPECT_EQ(bake(dir.file("bad.ply") + " -o " + dir.file("bad.stip"), &log), "1") << log;
+        EXPECT_NE(log.find(c.first), std::string::npos) << log;
+        EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 1) << log;
+    }
+    write_text(dir.file("good.ply"), head + "end_header\n" + body + "3 0 1 2\n");
+    std::string log;
+    EXPECT_EQ(bake(dir.file("good.ply") + " -o " + dir.file("good.stip") + " --points 50", &log),
+              "0")
+        << log;
 }
 
 TEST(BakeFiles, OutputNamingTheInputIsRefused) {
