@@ -243,11 +243,21 @@ std::vector<uint8_t> particles_section(const std::vector<uint32_t>& parents) {
     return b;
 }
 
+// CURV: the point count, then the angles, then the confidences (runtime/asset_format.h).
+std::vector<uint8_t> curvature_section(const BakedCurvature& c) {
+    Bytes b;
+    b.u32(uint32_t(c.angle.size()));
+    b.put(c.angle);
+    b.put(c.confidence);
+    return b.v;
+}
+
 }  // namespace
 
 std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points,
                                   const BakedStrokes& strokes, const BakedLooks& looks,
-                                  const std::vector<uint32_t>& particle_parents) {
+                                  const std::vector<uint32_t>& particle_parents,
+                                  const BakedCurvature& curvature) {
     struct Section {
         uint32_t tag;
         std::vector<uint8_t> bytes;
@@ -271,6 +281,9 @@ std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& p
     if (!looks.empty()) sections.push_back({format::kTagLooks, looks_section(looks)});
     if (!particle_parents.empty() && particle_parents.size() == points.size())
         sections.push_back({format::kTagParticles, particles_section(particle_parents)});
+    if (!curvature.angle.empty() && curvature.angle.size() == points.size() &&
+        curvature.confidence.size() == points.size())
+        sections.push_back({format::kTagCurvature, curvature_section(curvature)});
 
     std::vector<format::SectionEntry> table(sections.size());
     uint64_t offset = sizeof(format::FileHeader) + table.size() * sizeof(format::SectionEntry);

@@ -6,6 +6,7 @@
 
 #include "bake/bake_error.h"
 #include "bake/point_hierarchy.h"
+#include "bake/principal_curvature.h"
 #include "bake/raw_scene.h"
 #include "bake/stroke_data.h"
 #include "bake/surface_looks.h"
@@ -16,11 +17,13 @@ namespace stipple::bake {
 // written only when `strokes` holds any, a LOOK section only when `looks` says anything: an
 // asset without either is the same bytes as before those sections existed.
 // A PTRE section (the particle tree, docs/particles.md) only when `particle_parents` holds one
-// parent per point.
+// parent per point. A CURV section (principal curvature directions, bake/principal_curvature.h)
+// only when `curvature` holds one direction per point.
 std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points,
                                   const BakedStrokes& strokes = BakedStrokes(),
                                   const BakedLooks& looks = BakedLooks(),
-                                  const std::vector<uint32_t>& particle_parents = {});
+                                  const std::vector<uint32_t>& particle_parents = {},
+                                  const BakedCurvature& curvature = BakedCurvature());
 
 // Writes to `path` through a uniquely named temporary file, fsync and a rename
 // (bake/atomic_file.h), so a failed bake never leaves a partial asset or a temp file behind.

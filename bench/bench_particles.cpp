@@ -2,6 +2,9 @@
 // walking, 640x480, headless EGL. Per frame, each stage against its simplest alternative in
 // the same run:
 //   Adjust       stage 1 over the persistent active set; counter ns per active particle.
+//   AdjustZoom8  stage 1 at zoom 8, where the tree unfolds past the 20k baked points into
+//                temporary particles (runtime/particle_temporary.h); ns per active particle,
+//                to compare with Adjust's.
 //   AdjustFull   the alternative: the same criterion asked of every particle of the tree
 //                each frame (no persistent set); ns per particle.
 //   Transform    stage 3 over the listed particles; ns per listed particle.
@@ -83,10 +86,47 @@ void BM_Adjust(benchmark::State& state) {
         active * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
+// Stage 1 at `zoom`, after a few settling frames; the view goes back to zoom 1 afterwards.
+void adjust_at(benchmark::State& state, float zoom) {
+    Setup* s = setup();
+    if (!s) return state.SkipWithError("no headless GL or asset");
+    FrameConfig view = s->pipeline->config;
+    view.zoom = zoom;
+    if (!pipeline_set_view(s->pipeline.get(), view).ok()) return state.SkipWithError("view");
+    int f = 0;
+    for (int k = 0; k < 8; ++k) {
+        pose(s, f++);
+        particle_stage_adjust(s->stage.get(), pipeline_particle_input(*s->pipeline));
+    }
+    double active = 0, temporary = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        pose(s, f++);
+        const ParticleFrame frame = pipeline_particle_input(*s->pipeline);
+        state.ResumeTiming();
+        particle_stage_adjust(s->stage.get(), frame);
+        active += s->stage->set.active_count;
+        state.PauseTiming();
+        for (uint32_t k = 0; k < s->stage->set.count; ++k)
+            temporary += s->stage->set.list[k] >= s->asset.points.point_count;
+        state.ResumeTiming();
+    }
+    view.zoom = 1.0f;
+    if (!pipeline_set_view(s->pipeline.get(), view).ok()) return state.SkipWithError("view");
+    state.counters["active"] = active / double(state.iterations());
+    state.counters["temporary_listed"] = temporary / double(state.iterations());
+    state.counters["ns_per_active"] = benchmark::Counter(
+        active * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void BM_AdjustZoom8(benchmark::State& state) {
+    adjust_at(state, 8.0f);
+}
+
 void BM_AdjustFull(benchmark::State& state) {
     Setup* s = setup();
     if (!s) return state.SkipWithError("no headless GL or asset");
-    ParticleSamples& scratch = s->stage->asked;
+    ParticleSamples& scratch = s->stage->samples;  // the whole tree (asked holds a chunk)
     int f = 0;
     for (auto _ : state) {
         state.PauseTiming();
@@ -167,6 +207,7 @@ void BM_RenderFloor(benchmark::State& state) {
 
 // Interleaved, repeated: report min and median (the machine is noisy).
 BENCHMARK(BM_Adjust)->Repetitions(5)->ReportAggregatesOnly(false);
+BENCHMARK(BM_AdjustZoom8)->Repetitions(5);
 BENCHMARK(BM_AdjustFull)->Repetitions(5);
 BENCHMARK(BM_Transform)->Repetitions(5);
 BENCHMARK(BM_Strokes)->Repetitions(5);

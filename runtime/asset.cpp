@@ -292,6 +292,8 @@ Status parse_version3_sections(const uint8_t* bytes, const format::SectionEntry*
     if (st.ok() && sec[kSectionLooks]) st = detail::parse_looks(reader(sec[kSectionLooks]), a);
     if (st.ok() && sec[kSectionParticles])
         st = detail::parse_particles(reader(sec[kSectionParticles]), a);
+    if (st.ok() && sec[kSectionCurvature])
+        st = detail::parse_curvature(reader(sec[kSectionCurvature]), a);
     return st;
 }
 
@@ -337,9 +339,9 @@ Status parse(const uint8_t* bytes, size_t size, DecodeBudget* budget, Asset* a) 
 #endif
     }
     const uint32_t tags[kSectionCount] = {
-        format::kTagMesh,    format::kTagSkin,  format::kTagClips,    format::kTagPointStream,
-        format::kTagEdges,   format::kTagMorph, format::kTagBounds,   format::kTagSides,
-        format::kTagStrokes, format::kTagLooks, format::kTagParticles};
+        format::kTagMesh,    format::kTagSkin,  format::kTagClips,     format::kTagPointStream,
+        format::kTagEdges,   format::kTagMorph, format::kTagBounds,    format::kTagSides,
+        format::kTagStrokes, format::kTagLooks, format::kTagParticles, format::kTagCurvature};
     const format::SectionEntry* sec[kSectionCount];
     for (int i = 0; i < kSectionCount; ++i) {
         // Version 2 had no BNDS, SIDE, STRK or LOOK (kSectionBounds and after); like any
@@ -463,8 +465,9 @@ int find_clip(const Asset& asset, const char* name) {
 }
 
 const char* section_name(int section) {
-    static const char* const kNames[kSectionCount] = {
-        "MESH", "SKIN", "CLIP", "PNTQ", "EDGE", "MRPH", "BNDS", "SIDE", "STRK", "LOOK", "PTRE"};
+    static const char* const kNames[kSectionCount] = {"MESH", "SKIN", "CLIP", "PNTQ",
+                                                      "EDGE", "MRPH", "BNDS", "SIDE",
+                                                      "STRK", "LOOK", "PTRE", "CURV"};
     return section >= 0 && section < kSectionCount ? kNames[section] : "?";
 }
 

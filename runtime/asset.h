@@ -32,6 +32,14 @@ struct PointsView {
     const uint32_t* neighbour_offsets = nullptr;  // point_count + 1, non-decreasing
     const uint32_t* neighbours = nullptr;         // relevant neighbours, each < point_count
     uint32_t neighbour_count = 0;
+    // The principal curvature direction per point (CURV section, optional; runtime/
+    // asset_format.h): angle in the host triangle's tangent frame, in format::
+    // kCurvatureAngleStep units, and its confidence in kCurvatureConfidenceStep units, for
+    // points [0, curvature_count) (a view extended past the baked points keeps the count of
+    // the baked ones). nullptr and 0 without CURV.
+    const uint8_t* curvature_angle = nullptr;
+    const uint8_t* curvature_confidence = nullptr;
+    uint32_t curvature_count = 0;
 };
 
 // Edge adjacency for silhouettes: 4 entries per edge (vertex a, vertex b, face 0, face 1 or
@@ -113,6 +121,7 @@ enum : int {
     kSectionStrokes,
     kSectionLooks,
     kSectionParticles,
+    kSectionCurvature,
     kSectionCount
 };
 

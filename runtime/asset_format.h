@@ -30,6 +30,7 @@ constexpr uint32_t kTagSides = fourcc('S', 'I', 'D', 'E');        // v3: double-
 constexpr uint32_t kTagStrokes = fourcc('S', 'T', 'R', 'K');      // paintstrokes (GI'98)
 constexpr uint32_t kTagParticles = fourcc('P', 'T', 'R', 'E');    // the particle tree (GI'01)
 constexpr uint32_t kTagLooks = fourcc('L', 'O', 'O', 'K');        // colours, parts, creases
+constexpr uint32_t kTagCurvature = fourcc('C', 'U', 'R', 'V');    // principal directions (GI'01)
 constexpr uint32_t kNoFace = 0xFFFFFFFFu;                         // second face of a boundary edge
 
 struct FileHeader {  // 32 bytes at offset 0
@@ -162,6 +163,16 @@ constexpr uint8_t kLookPartKnownFlags = kLookPartTransparent;
 //   u32 point_count (= the PNTQ section's), u32 parent[point_count]
 // parent[i] is a point before i (coarser), or kNoParticleParent for a root; point 0 is a root.
 constexpr uint32_t kNoParticleParent = 0xFFFFFFFFu;
+
+// CURV section (optional; version 3 files may carry it): each point's principal curvature
+// direction, the orientation field of view-dependent particles (bake/principal_curvature.h,
+// docs/particles.md).
+//   u32 point_count (= the PNTQ section's), u8 angle[point_count], u8 confidence[point_count]
+// angle: the direction of the larger |curvature| in the host triangle's tangent frame
+// (runtime/stroke_anchor.h's surface_frame: x along the first edge), a line, so modulo pi, in
+// steps of pi / 256; confidence: (|k1| - |k2|) / (|k1| + |k2| + floor) in steps of 1 / 255.
+constexpr float kCurvatureAngleStep = 3.14159265358979f / 256.0f;
+constexpr float kCurvatureConfidenceStep = 1.0f / 255.0f;
 
 // Section checksums: crc32() of runtime/crc32.h.
 

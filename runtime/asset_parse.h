@@ -61,5 +61,8 @@ Status parse_looks(Reader r, Asset* a);
 // PTRE section (runtime/asset_particles.cpp): the particle tree, validated against the point
 // hierarchy already in `a` (a parent precedes its child).
 Status parse_particles(Reader r, Asset* a);
+// CURV section (runtime/asset_curvature.cpp): principal curvature directions, one per point of
+// the hierarchy already in `a`.
+Status parse_curvature(Reader r, Asset* a);
 
 }  // namespace stipple::detail

@@ -69,6 +69,8 @@ Status check_limits(const FrameConfig& c) {
         check("toon_ink", c.toon_ink, s.toon_ink),
         check("tone_gamma", c.tone_gamma, s.tone_gamma),
         check("tone_contrast", c.tone_contrast, s.tone_contrast),
+        check("threads", c.threads, s.threads),
+        check("particle_budget", c.particle_budget, s.particle_budget),
     };
     for (const Status& st : checks)
         if (!st.ok()) return st;
@@ -104,6 +106,7 @@ Status resolve_frame_config(const FrameConfig& in, FrameConfig* out) {
     c.tone_contrast = or_default(c.tone_contrast, s.tone_contrast);
     Status st = check_limits(c);
     if (!st.ok()) return st;
+    if (c.threads == 0) c.threads = thread_pool_auto_threads();
     for (int i = 0; i < c.light_count; ++i) {  // unit directions
         float* d = c.lights[i].direction;
         const float len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);

@@ -10,6 +10,7 @@
 #include "anim/anim.h"
 #include "runtime/status.h"
 #include "runtime/style.h"
+#include "runtime/thread_pool.h"
 
 namespace stipple {
 
@@ -83,6 +84,13 @@ struct FrameSettings {
     Setting<float> tone_gamma{1.0f, 0.1f, 10.0f};
     Setting<float> tone_contrast{1.0f, 0.1f, 10.0f};
     float fill[3] = {0.55f, 0.8f, 0.35f};  // toon fill and colour dots without LOOK colours
+    // Threads for the CPU point stages (runtime/point_stages.h); 0: the hardware's, at most
+    // kMaxAutoThreads.
+    Setting<int> threads{1, 0, kMaxPoolThreads};
+    // View-dependent particles (docs/particles.md): the particle tree's size, baked and
+    // temporary particles together (GI'01 §5, runtime/particle_temporary.h); at most the
+    // asset's points: the bake alone. Every per-particle buffer is sized for it at init.
+    Setting<uint32_t> particle_budget{262144u, 0u, 1u << 22};
 };
 inline constexpr FrameSettings kFrameSettings{};
 
@@ -153,6 +161,15 @@ struct FrameConfig {
     float tone_contrast = kFrameSettings.tone_contrast.fallback;
     float fill[3] = {kFrameSettings.fill[0], kFrameSettings.fill[1], kFrameSettings.fill[2]};
     bool creases = true;  // crease lines (thesis §8.2's sharp edges) when the asset has them
+    // Threads that place, re-scale and size points over contiguous point ranges (fixed at
+    // init; runtime/thread_pool.h). The output is byte-identical for any count. 0 resolves to
+    // the hardware's thread count, at most kMaxAutoThreads.
+    int threads = kFrameSettings.threads.fallback;
+    // Particle styles (docs/particles.md): the particle tree's size (fixed at init), and
+    // visibility fades: the polygon pass's depth is read back each frame so strokes it hides
+    // fade out instead of popping (runtime/particle_visibility.h; turns on depth_readback).
+    uint32_t particle_budget = kFrameSettings.particle_budget.fallback;
+    bool particle_fades = false;
 };
 
 // Writes `in` with defaults in its zero fields (see FrameConfig) to *out. Fails with

@@ -13,6 +13,8 @@
 #include "runtime/frame_pose.h"
 #include "runtime/particle_frame.h"
 #include "runtime/point_placement.h"
+#include "runtime/point_simd.h"
+#include "runtime/point_stages.h"
 #include "runtime/silhouette.h"
 #include "runtime/stroke_anchor.h"
 
@@ -235,8 +237,7 @@ Status init_memory(Pipeline* p, const Asset& asset, const FrameConfig& config) {
     if (st.ok()) st = stroke_stage_init(&p->strokes, asset, p->config);
     if (st.ok()) st = style_init(&p->style, asset, p->point_capacity);  // runtime/style.h
     if (st.ok() && p->config.particle_style)
-        st = particle_stage_init(&p->particles, asset, *p->config.particle_style, p->config.width,
-                                 p->config.height);
+        st = pipeline_particle_init(&p->particles, asset, p->config);  // runtime/particle_frame.h
     return st;
 }
 
@@ -259,6 +260,8 @@ Status pipeline_init(Pipeline* p, const Asset& asset, const GlApi& gl, const Fra
                      const Allocator& allocator) {
     AllocatorScope scope(allocator);
     Status st = init_memory(p, asset, config);
+    point_simd_detected();  // the SIMD path, chosen once (runtime/point_simd.h)
+    if (st.ok()) st = thread_pool_init(&p->pool, p->config.threads);
     if (st.ok()) st = renderer_init(&p->renderer, gl, renderer_config(*p));
     if (st.ok())  // the look of the camera set before the renderer existed (runtime/style.h)
         renderer_set_look(&p->renderer, p->config, p->size_params.light_direction,
@@ -324,20 +327,18 @@ RefinedHosts refined_hosts(const Pipeline& p) {
 // Thesis Alg. 6.3, 6.4 and 3.2 over every baked point.
 void full_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
     const Asset& a = *p->asset;
-    place_points(a.points, a.mesh.indices, p->vertex_positions.get(), p->vertex_normals.get(),
-                 p->point_positions.get(), p->point_normals.get());
+    const PointStageFrame f = point_stage_frame(p);  // threads and SIMD: runtime/point_stages.h
+    point_stage_place(&p->pool, f, nullptr, a.points.point_count);
     face_double_sided_points(a.points.point_count, p->point_double_sided.get(),
                              p->point_positions.get(), p->point_normals.get(), p->size_params.eye);
     if (t) t->place += ms_since(clock);
     const uint32_t baked = a.points.point_count;
     if (p->config.relevance_update)
-        recompute_relevance(a.points, p->point_positions.get(), p->radius_scale.get(),
-                            p->rest_radius.get(), p->radius.get());
+        point_stage_relevance(&p->pool, f, nullptr, baked);
     else
         std::memcpy(p->radius.get(), p->rest_radius.get(), size_t(baked) * 4);
     if (t) t->relevance += ms_since(clock);
-    size_stipples(baked, p->point_positions.get(), p->point_normals.get(), p->radius.get(),
-                  p->size_params, p->size.get());
+    point_stage_size(&p->pool, f, nullptr, baked);
     p->lod_sizes_clear = false;
     if (t) t->size += ms_since(clock);
 }
@@ -363,21 +364,18 @@ void lod_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
     if (p->config.refinement_budget > 0) frame.size_from = baked - baked / 4;
     point_clusters_select(&c, a, frame);
     const uint32_t* run = c.run.get();
-    place_listed_points(a.points, a.mesh.indices, p->vertex_positions.get(),
-                        p->vertex_normals.get(), c.placed.get(), c.placed_count,
-                        p->point_positions.get(), p->point_normals.get());
+    const PointStageFrame f = point_stage_frame(p);  // threads and SIMD: runtime/point_stages.h
+    point_stage_place(&p->pool, f, c.placed.get(), c.placed_count);
     face_listed_double_sided_points(run, c.run_count, p->point_double_sided.get(),
                                     p->point_positions.get(), p->point_normals.get(),
                                     p->size_params.eye);
     if (t) t->place += ms_since(clock);
     if (p->config.relevance_update)
-        recompute_listed_relevance(a.points, p->point_positions.get(), p->radius_scale.get(),
-                                   p->rest_radius.get(), run, c.run_count, p->radius.get());
+        point_stage_relevance(&p->pool, f, run, c.run_count);
     else
         for (uint32_t j = 0; j < c.run_count; ++j) p->radius[run[j]] = p->rest_radius[run[j]];
     if (t) t->relevance += ms_since(clock);
-    size_listed_stipples(run, c.run_count, p->point_positions.get(), p->point_normals.get(),
-                         p->radius.get(), p->size_params, p->size.get());
+    point_stage_size(&p->pool, f, run, c.run_count);
     if (t) t->size += ms_since(clock);
 }
 
@@ -459,9 +457,13 @@ void pipeline_line_and_stroke_stages(Pipeline* p, StageTimes* t, StageClock::tim
     const Asset& a = *p->asset;
     p->lines_drawn = 0;
     const bool creases = p->config.creases && a.looks.crease_count > 0;  // thesis §8.2
-    if ((p->config.silhouettes && a.edges.edge_count > 0) || creases)
+    const bool facing = (p->config.silhouettes && a.edges.edge_count > 0) || creases;
+    if (facing)
         triangle_facing(a.mesh.triangle_count, a.mesh.indices, p->vertex_positions.get(),
                         p->size_params.eye, p->triangle_front.get());
+    // The mesh pass draws only what may face the eye (runtime/renderer_front.cpp).
+    renderer_set_front_faces(&p->renderer, facing ? p->triangle_front.get() : nullptr,
+                             p->view_projection);
     if (p->config.silhouettes && a.edges.edge_count > 0)
         p->lines_drawn = silhouette_lines(a.edges, p->triangle_front.get(),
                                           p->vertex_positions.get(), p->lines.get());
@@ -561,6 +563,7 @@ Status pipeline_set_view(Pipeline* p, const FrameConfig& in) {
 }
 
 void pipeline_destroy(Pipeline* p) {
+    thread_pool_destroy(&p->pool);
     gpu_stages_destroy(&p->gpu);
     stroke_stage_destroy(&p->strokes);
     particle_stage_destroy(&p->particles);

@@ -20,6 +20,7 @@
 #include "runtime/renderer.h"
 #include "runtime/stipple_size.h"
 #include "runtime/stroke_stage.h"
+#include "runtime/thread_pool.h"
 
 namespace stipple {
 
@@ -90,6 +91,7 @@ struct Pipeline {
     // baked point outside the last selection has size 0.
     PointClusters clusters;
     bool lod_sizes_clear = false;
+    ThreadPool pool;  // FrameConfig::threads: the point stages' ranges (runtime/point_stages.h)
 };
 
 // Resolves `config` (resolve_frame_config: defaults, limits), takes every buffer a frame needs
@@ -173,6 +175,13 @@ struct VisibleDot {
 // (p.point_capacity is always enough) and returns the count.
 uint32_t pipeline_visible_dots(const Pipeline& p, const float* depth, VisibleDot* out,
                                uint32_t capacity);
+
+// The dots the last frame sized (size > 0, centre inside the image and on the mesh) that the
+// mesh in front hides at their centre pixel: the complement of pipeline_visible_dots on the
+// object. Coherence measures use it to tell occlusion (a leg passing in front of the other)
+// from dots the size rule dropped (docs/measure.md).
+uint32_t pipeline_hidden_dots(const Pipeline& p, const float* depth, VisibleDot* out,
+                              uint32_t capacity);
 
 // A paintstroke's root in the last frame: the first control point as drawn and the host
 // surface point it is anchored at (the stipple stage's own placement of the root's hierarchy

@@ -53,8 +53,13 @@ uint32_t pipeline_stroke_roots(const Pipeline& p, StrokeRootSample* out, uint32_
     return n;
 }
 
-uint32_t pipeline_visible_dots(const Pipeline& p, const float* depth, VisibleDot* out,
-                               uint32_t capacity) {
+namespace {
+
+// The dots with a size whose centre lies inside the image and on the mesh's coverage, split by
+// the depth test the point shader makes at the centre pixel: `hidden` false lists the ones it
+// passes (drawn), true the ones the mesh in front hides (occluded).
+uint32_t sized_dots(const Pipeline& p, const float* depth, bool hidden, VisibleDot* out,
+                    uint32_t capacity) {
     const int w = p.config.width, h = p.config.height;
     const uint32_t count = pipeline_point_count(p);
     uint32_t n = 0;
@@ -64,10 +69,23 @@ uint32_t pipeline_visible_dots(const Pipeline& p, const float* depth, VisibleDot
         const int px = int(std::floor(s.x)), py = int(std::floor(s.y));
         if (px < 0 || py < 0 || px >= w || py >= h) continue;
         const float mesh_depth = depth[size_t(h - 1 - py) * size_t(w) + size_t(px)];
-        if (mesh_depth >= 1.0f || s.z > mesh_depth + 1e-5f) continue;  // off the object or hidden
+        if (mesh_depth >= 1.0f) continue;                    // off the object
+        if ((s.z > mesh_depth + 1e-5f) != hidden) continue;  // hidden / visible
         out[n++] = VisibleDot{pipeline_point_id(p, i), s.x, s.y, p.size[i]};
     }
     return n;
+}
+
+}  // namespace
+
+uint32_t pipeline_visible_dots(const Pipeline& p, const float* depth, VisibleDot* out,
+                               uint32_t capacity) {
+    return sized_dots(p, depth, false, out, capacity);
+}
+
+uint32_t pipeline_hidden_dots(const Pipeline& p, const float* depth, VisibleDot* out,
+                              uint32_t capacity) {
+    return sized_dots(p, depth, true, out, capacity);
 }
 
 }  // namespace stipple

@@ -32,6 +32,17 @@ void particle_style_frame_config(const ParticleStyle& style, FrameConfig* c) {
     c->silhouettes = false;
     c->refinement_budget = 0;
     c->strokes = false;
+    if (c->particle_fades) c->depth_readback = true;
+}
+
+static_assert(kFrameSettings.particle_budget.fallback == kDefaultParticleTreePoints,
+              "one default particle budget");
+
+Status pipeline_particle_init(ParticleStage* s, const Asset& asset, const FrameConfig& c) {
+    Status st =
+        particle_stage_init(s, asset, *c.particle_style, c.width, c.height, c.particle_budget);
+    if (st.ok() && c.particle_fades && s->enabled) st = particle_stage_enable_visibility_fades(s);
+    return st;
 }
 
 void pipeline_particle_frame(Pipeline* p, ParticleStage* s, const AnimationState& state,
@@ -42,7 +53,15 @@ void pipeline_particle_frame(Pipeline* p, ParticleStage* s, const AnimationState
     if (t) t->strokes += ms_since(&clock);
     renderer_draw_mesh(&p->renderer, p->view_projection, p->vertex_positions.get(),
                        p->asset->mesh.vertex_count);
-    particle_stage_draw(s, p->renderer.ink_fbo, p->renderer.depth_tex);
+    ParticleVisibility& v = s->visibility;
+    v.applied = false;
+    if (v.enabled && s->enabled && p->renderer.config.depth_copy &&
+        v.width == p->renderer.config.width && v.height == p->renderer.config.height) {
+        renderer_read_depth(&p->renderer, v.scratch.get(), v.depth.get());
+        particle_visibility_apply(&v, s->strokes.get(), s->stroke_id.get(), &s->stroke_count);
+        s->stats.strokes = s->stroke_count;
+    }
+    particle_stage_draw(s, p->renderer.ink_fbo, v.applied ? 0u : p->renderer.depth_tex);
     p->renderer.gl.BindFramebuffer(GL_FRAMEBUFFER, p->renderer.fbo);
     renderer_check_errors(&p->renderer, "particle strokes");
     p->renderer.gl.Finish();
@@ -57,8 +76,9 @@ uint32_t particle_visible_strokes(const Pipeline& p, const ParticleStage& s, con
         const StrokeInstance& st = s.strokes[k];
         const int px = int(std::floor(st.x)), py = int(std::floor(st.y));
         if (px < 0 || py < 0 || px >= w || py >= h || st.depth > 1.0f) continue;
-        const float mesh = depth[size_t(h - 1 - py) * size_t(w) + size_t(px)];
-        if (mesh < 1.0f && st.depth > mesh + 1e-5f) continue;  // hidden, as kStrokeVs tests
+        // Hidden, as kStrokeVs tests; with visibility fades the strokes carry their
+        // visibility in their opacity and are drawn untested.
+        if (!s.visibility.applied && stroke_hidden(st, depth, w, h)) continue;
         out[n++] =
             VisibleStroke{s.stroke_id[k], st.x, st.y, st.angle, st.length, st.width, st.alpha};
     }

@@ -13,8 +13,10 @@
 #include "runtime/particle_adjust.h"
 #include "runtime/particle_renderer.h"
 #include "runtime/particle_style.h"
+#include "runtime/particle_temporary.h"
 #include "runtime/particle_transform.h"
 #include "runtime/particle_tree.h"
+#include "runtime/particle_visibility.h"
 
 namespace stipple {
 
@@ -29,9 +31,14 @@ struct ParticleStage {
     bool enabled = false;
     ParticleStyle style;
     Buffer<uint32_t> parent;  // the particle tree's parents (runtime/particle_tree.h)
+    // The asset's points continued by temporary particles (runtime/particle_temporary.h):
+    // particles [asset points, temporary.count) are the run-time refinement's extra points.
+    TemporaryParticles temporary;
     ParticleTree tree;
     ParticleSet set;
-    ParticleSamples asked, samples;  // stage 1's scratch; stage 3's output
+    // Stage 1's scratch (a chunk of the particles asked, at most 4,096); stage 3's output
+    // (every listed particle).
+    ParticleSamples asked, samples;
     // Per particle: opacity of turning away (fades to 0 on the back, like a fold), and the
     // frame it was last drawn in (a particle back in the list starts at its target).
     Buffer<float> facing_alpha;
@@ -45,14 +52,18 @@ struct ParticleStage {
     int width = 0, height = 0;
     ParticleFrame frame;  // this frame's input, while adjusting
     ParticleStageStats stats;
+    ParticleVisibility visibility;  // off unless enabled (runtime/particle_visibility.h)
     ParticleRenderer renderer;
 };
 
 // Builds the particle tree from the asset's points (parents by particle_parents over the bind
-// pose) and takes every buffer for `style` and an image of width x height. Fails with
-// out_of_memory, or invalid_argument for a style whose values are out of range.
+// pose, or the asset's PTRE), continued by temporary particles up to `tree_points` particles
+// in all (GI'01 §5; none when tree_points <= the asset's points), and takes every buffer for
+// `style` and an image of width x height. Fails with out_of_memory, or invalid_argument for a
+// style whose values are out of range.
 [[nodiscard]] Status particle_stage_init(ParticleStage* s, const Asset& asset,
-                                         const ParticleStyle& style, int width, int height);
+                                         const ParticleStyle& style, int width, int height,
+                                         uint32_t tree_points = kDefaultParticleTreePoints);
 [[nodiscard]] Status particle_stage_init_gl(ParticleStage* s, const GlApi& gl);
 
 // Stages 1, 3 and the CPU half of 4 for this frame's posed mesh and camera: the three calls
@@ -64,6 +75,11 @@ void particle_stage_build_strokes(ParticleStage* s);                       // st
 
 // The GPU half of stage 4: draws the strokes into `framebuffer`, hidden by `depth_texture`.
 void particle_stage_draw(ParticleStage* s, GLuint framebuffer, GLuint depth_texture);
+
+// Opt-in, after particle_stage_init: strokes the polygon pass hides fade out and in instead of
+// popping (runtime/particle_visibility.h). Takes its memory now; the frame pipeline must have
+// FrameConfig::depth_readback, else frames draw as without. Fails with out_of_memory.
+[[nodiscard]] Status particle_stage_enable_visibility_fades(ParticleStage* s);
 
 void particle_stage_destroy(ParticleStage* s);
 

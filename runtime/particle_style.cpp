@@ -95,6 +95,9 @@ ParticleStyle charcoal() {  // §4.6: a few long, thick overlapping silhouette s
 ParticleStyle two_tone() {  // §4.7: light and dark strokes on neutral grey
     ParticleStyle s = make("two-tone");
     s.spacing_px = 5.0f;
+    // Strokes across the larger curvature where the asset stores it (stipple-bake --curvature;
+    // else random): hatching that follows the form (GI'01 §1's curvature fields).
+    s.field = OrientationField::curvature;
     s.background[0] = s.background[1] = s.background[2] = 0.5f;
     s.fill_colour[0] = s.fill_colour[1] = s.fill_colour[2] = 0.5f;
     s.brush = Brush::solid;

@@ -37,6 +37,14 @@ float random_field_angle(uint32_t id) {
     return float(h >> 8) * (6.28318530718f / 16777216.0f);
 }
 
+float curvature_field_angle(const PointsView& points, uint32_t id) {
+    // Particles past the baked hierarchy (none stored) take the random field too.
+    if (!points.curvature_angle || id >= points.curvature_count ||
+        points.curvature_confidence[id] < kCurvatureConfident)
+        return random_field_angle(id);
+    return float(points.curvature_angle[id]) * format::kCurvatureAngleStep;
+}
+
 namespace {
 
 glm::vec3 vertex(const float* v, uint32_t i) {
@@ -73,8 +81,9 @@ glm::vec2 screen_direction(const ParticleFrame& f, const glm::vec4& clip, const 
 float field_angle(const ParticleFrame& f, const SurfaceFrame& s, const glm::vec4& clip, uint32_t id,
                   OrientationField field, float* foreshortening) {
     glm::vec3 d;
-    if (field == OrientationField::random) {
-        const float a = random_field_angle(id);
+    if (field == OrientationField::random || field == OrientationField::curvature) {
+        const float a = field == OrientationField::random ? random_field_angle(id)
+                                                          : curvature_field_angle(*f.points, id);
         d = std::cos(a) * s.x + std::sin(a) * s.y;
     } else {
         d = s.z;

@@ -25,7 +25,18 @@ enum class OrientationField : uint8_t {
     normal_tangent = 1,
     // Along the projected normal (across the outline).
     normal = 2,
+    // The principal curvature direction the bake stored (CURV section, stipple-bake
+    // --curvature; bake/principal_curvature.h): the direction of the larger |curvature| in
+    // the host triangle's tangent frame, so it turns with skinning like `random`. Where the
+    // asset has no CURV, or the point's confidence is below kCurvatureConfident (umbilic or
+    // flat), the particle takes the random field's direction: an asset without CURV draws as
+    // with `random`.
+    curvature = 3,
 };
+
+// Confidence (format::kCurvatureConfidenceStep units) from which the curvature field uses
+// the stored direction: (|k1| - |k2|) / (|k1| + |k2| + flat) >= 0.2 (docs/particles.md).
+constexpr uint8_t kCurvatureConfident = 51;
 
 // What the stage reads this frame: the posed mesh and the camera.
 struct ParticleFrame {
@@ -64,6 +75,10 @@ struct ParticleSamples {
 // The random field's direction of particle `id`: an angle in [0, 2 pi) in the host's tangent
 // frame, the same for every frame and every run.
 float random_field_angle(uint32_t id);
+
+// The curvature field's direction of particle `id` in the host's tangent frame: the stored
+// principal direction where confident, else random_field_angle(id).
+float curvature_field_angle(const PointsView& points, uint32_t id);
 
 // Transforms particles ids[0 .. count): places each on its posed host triangle (Thesis Alg.
 // 6.3), projects it and its orientation vector, lights it. Particles behind the camera get

@@ -128,12 +128,12 @@ uint32_t particle_level_start(uint32_t i) {
 }
 
 Status particle_parents(uint32_t count, const float* positions, float max_distance,
-                        uint32_t* out_parent) {
-    if (count == 0) return {};
-    out_parent[0] = kNoParent;
+                        uint32_t* out_parent, uint32_t first) {
+    if (count == 0 || first >= count) return {};
+    if (first == 0) out_parent[0] = kNoParent;
     const float extent = extent_of(count, positions);
     if (!(extent > 0.0f)) {  // all points at one place (or not finite): all children of 0
-        for (uint32_t i = 1; i < count; ++i) out_parent[i] = 0;
+        for (uint32_t i = std::max(first, 1u); i < count; ++i) out_parent[i] = 0;
         return {};
     }
     // Level k's points in a grid whose cell is about their spacing on a surface (4 extent /
@@ -156,7 +156,7 @@ Status particle_parents(uint32_t count, const float* positions, float max_distan
         if (end >= count) break;
     }
     int level = 0;  // the level above point i's
-    for (uint32_t i = 1; i < count; ++i) {
+    for (uint32_t i = std::max(first, 1u); i < count; ++i) {
         while (level + 1 < levels && (uint64_t(1) << (2 * (level + 1))) <= i) ++level;
         const glm::vec3 p = point_at(positions, i);
         uint32_t parent = nearest_in(grids[level], p, level <= 1 ? 1 << 20 : kRings, max_distance);

@@ -49,8 +49,9 @@ uint32_t particle_level_start(uint32_t i);
 // farther than `max_distance` from every coarser point (a separate piece of a scattered model)
 // is a root too, and one with no point of the level above nearby takes the nearest of a
 // coarser level. `positions`: 3 floats per point. Time O(n) on surface samples (a grid per
-// level). Fails with out_of_memory.
+// level). Points before `first` keep out_parent as it is (a stored tree continued by
+// temporary particles, runtime/particle_temporary.h). Fails with out_of_memory.
 [[nodiscard]] Status particle_parents(uint32_t count, const float* positions, float max_distance,
-                                      uint32_t* out_parent);
+                                      uint32_t* out_parent, uint32_t first = 0);
 
 }  // namespace stipple

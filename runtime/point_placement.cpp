@@ -128,7 +128,14 @@ inline float relevance_radius(const PointsView& points, const float* point_posit
 
 void recompute_relevance(const PointsView& points, const float* point_positions, const float* scale,
                          const float* fallback_radius, float* out_radius) {
-    for (uint32_t i = 0; i < points.point_count; ++i)
+    recompute_relevance_range(points, point_positions, scale, fallback_radius, 0,
+                              points.point_count, out_radius);
+}
+
+void recompute_relevance_range(const PointsView& points, const float* point_positions,
+                               const float* scale, const float* fallback_radius, uint32_t begin,
+                               uint32_t end, float* out_radius) {
+    for (uint32_t i = begin; i < end; ++i)
         out_radius[i] = relevance_radius(points, point_positions, scale, fallback_radius, i);
 }
 

@@ -38,6 +38,12 @@ void relevance_scale(const PointsView& points, const float* bind_point_positions
 void recompute_relevance(const PointsView& points, const float* point_positions, const float* scale,
                          const float* fallback_radius, float* out_radius);
 
+// recompute_relevance for the points begin .. end - 1 only (a thread's range,
+// runtime/point_stages.h); every point must have been placed this frame.
+void recompute_relevance_range(const PointsView& points, const float* point_positions,
+                               const float* scale, const float* fallback_radius, uint32_t begin,
+                               uint32_t end, float* out_radius);
+
 // recompute_relevance for the points list[0 .. list_count) only; their relevant neighbours
 // must have been placed this frame.
 void recompute_listed_relevance(const PointsView& points, const float* point_positions,

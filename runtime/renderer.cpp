@@ -336,6 +336,7 @@ Status renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config)
     if (st.ok()) st = create_programs(r);
     if (st.ok()) {
         create_buffers(r);
+        renderer_init_front(r);
         st = renderer_init_looks(r);
     }
     if (st.ok()) {
@@ -406,7 +407,14 @@ void renderer_draw_triangles(Renderer* r, const glm::mat4& view_projection) {
             gl.CullFace(GL_BACK);
             gl.Enable(GL_CULL_FACE);
         }
-        gl.DrawElements(GL_TRIANGLES, GLsizei(single * 3), GL_UNSIGNED_INT, nullptr);
+        uint32_t front = 0;  // the GPU is handed only the triangles it would not cull
+        if (det != 0.0f && renderer_front_triangles(r, view_projection, &front)) {
+            gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->front_ibo);
+            gl.DrawElements(GL_TRIANGLES, GLsizei(front * 3), GL_UNSIGNED_INT, nullptr);
+            gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->mesh_ibo);  // mesh_vao's own again
+        } else {
+            gl.DrawElements(GL_TRIANGLES, GLsizei(single * 3), GL_UNSIGNED_INT, nullptr);
+        }
         gl.Disable(GL_CULL_FACE);
     }
     if (total > single)
@@ -515,6 +523,7 @@ void renderer_destroy(Renderer* r) {
     const GlApi& gl = r->gl;
     if (!gl.DeleteBuffers) return;
     renderer_destroy_looks(r);
+    renderer_destroy_front(r);
     GLuint buffers[5] = {r->mesh_vbo, r->mesh_ibo, r->point_pos_vbo, r->point_size_vbo,
                          r->line_vbo};
     gl.DeleteBuffers(5, buffers);

@@ -102,6 +102,15 @@ struct Renderer {
     GLint style_vp = -1, style_bias = -1, style_fill = -1, style_toon = -1, style_shade = -1,
           style_lights = -1, style_light_count = -1, style_ambient = -1, style_cut = -1;
     GLint point_use_colour = -1, point_see_through = -1;
+    // The mesh pass's front faces (runtime/renderer_front.cpp, renderer_set_front_faces): the
+    // per-triangle facing flags of this frame (silhouette.h), valid for front_vp only, and
+    // front_ibo, which holds the single-sided triangles among them that may face the eye
+    // (front_count of them, or kFrontNotBuilt until the first mesh pass that uses them).
+    static constexpr uint32_t kFrontNotBuilt = 0xFFFFFFFFu;
+    const uint8_t* front_faces = nullptr;
+    glm::mat4 front_vp = glm::mat4(0.0f);
+    uint32_t front_count = kFrontNotBuilt;
+    GLuint front_ibo = 0;
 };
 
 // Creates the framebuffer, shaders and buffers. Fails with gl_error (incomplete framebuffer,
@@ -121,6 +130,21 @@ void renderer_draw_points(Renderer* r, const glm::mat4& view_projection, const f
 // are not changed, and where they cannot cull that winding every triangle is drawn. Leaves
 // GL_CULL_FACE off.
 void renderer_draw_triangles(Renderer* r, const glm::mat4& view_projection);
+
+// The facing of this frame's triangles (triangle_facing's flags for the posed vertices the mesh
+// passes draw and the eye of `view_projection`; runtime/silhouette.h), or nullptr: with them,
+// renderer_draw_triangles hands the GPU only the single-sided triangles that may face the eye
+// instead of having it cull the rest, for passes drawn with this same view_projection (a
+// perspective one). The picture is the same: the triangles left out are those the GPU culls.
+// `front` must stay valid until the next call. (runtime/renderer_front.cpp)
+void renderer_set_front_faces(Renderer* r, const uint8_t* front, const glm::mat4& view_projection);
+// renderer_draw_triangles' part: when the flags apply to `view_projection`, writes the
+// single-sided triangles that may face the eye into r->front_ibo (once per set of flags), sets
+// *count to their number and returns true.
+bool renderer_front_triangles(Renderer* r, const glm::mat4& view_projection, uint32_t* count);
+// renderer_init's and renderer_destroy's part for front_ibo.
+void renderer_init_front(Renderer* r);
+void renderer_destroy_front(Renderer* r);
 
 // Binds the offscreen framebuffer (colour and depth; not the depth copy) and its viewport for a
 // pass that draws its own geometry over the mesh pass (paintstrokes, runtime/stroke_stage.h).

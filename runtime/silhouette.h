@@ -9,7 +9,12 @@
 
 namespace stipple {
 
-// front[t] = 1 if triangle t faces the eye (counter-clockwise front faces, glTF).
+// Triangle facing (triangle_facing's flags): toward the eye, away from it, or away from it but
+// nearly edge-on (the depth pass keeps those: runtime/renderer_front.cpp).
+constexpr uint8_t kFacingBack = 0, kFacingFront = 1, kFacingEdgeOn = 2;
+
+// front[t] = kFacingFront (1) if triangle t faces the eye (counter-clockwise front faces,
+// glTF), else kFacingBack (0), or kFacingEdgeOn when it is within about 0.9 degrees of edge-on.
 void triangle_facing(uint32_t triangle_count, const uint32_t* indices, const float* positions,
                      const glm::vec3& eye, uint8_t* front);
 

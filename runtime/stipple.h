@@ -120,7 +120,9 @@ typedef struct stipple_player_desc {
     int no_lod;                   /* 1: run place, relevance and size on every point; 0: only on
                                      the point clusters in view and front-facing, cut where no
                                      dot can draw (same dots, docs/lod.md) */
-    int lod_reserved;             /* 0 (keeps the struct free of padding) */
+    int threads;                  /* threads for place, relevance and size over point ranges
+                                     (byte-identical output); 0: 1, -1: the hardware's (at
+                                     most 8), else 1..64 */
     /* Memory: everything a player takes, taken at create. Either an allocator hook (allocate
      * and release with allocator_user; allocate returns 16-byte aligned memory or NULL), or
      * one block (memory, memory_size) of at least stipple_player_memory_bytes() bytes, 16-byte

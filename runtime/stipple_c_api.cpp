@@ -160,6 +160,7 @@ stipple::FrameConfig frame_config_of(const stipple_player_desc& d) {
     c.max_point_size = d.max_point_size;
     c.relevance_update = !d.no_relevance_update;
     c.lod = !d.no_lod;
+    if (d.threads != 0) c.threads = d.threads == -1 ? 0 : d.threads;  // FrameConfig: 0 = auto
     if (d.dark_tone_set) c.dark_tone = d.dark_tone;
     if (d.refinement_budget < 0) c.refinement_budget = 0;
     if (d.refinement_budget > 0) c.refinement_budget = uint32_t(d.refinement_budget);

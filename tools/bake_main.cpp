@@ -24,6 +24,7 @@
 #include "runtime/asset.h"
 #include "runtime/asset_format.h"
 #include "runtime/asset_limits.h"
+#include "runtime/particle_transform.h"
 #include "runtime/particle_tree.h"
 #include "tools/bake_log.h"
 #include "tools/cli_options.h"
@@ -74,6 +75,8 @@ const char* kUsage =
     "                   is an error\n"
     "  --particles      write the PTRE section: the particle tree of view-dependent particles\n"
     "                   (docs/particles.md; without it the runtime builds the tree at load)\n"
+    "  --curvature      write the CURV section: each point's principal curvature direction,\n"
+    "                   the orientation field of ink and two-tone strokes (docs/particles.md)\n"
     "  --quiet          no warnings and no summary; the progress bar (on stderr, for bakes over\n"
     "                   a second) shows only when stderr is a terminal (default off)\n"
     "  -h, --help       this text\n";
@@ -93,6 +96,7 @@ struct Options {
     std::string strokes;
     bool looks = false;
     bool particles = false;  // --particles: a PTRE section
+    bool curvature = false;  // --curvature: a CURV section
     std::vector<std::string> transparent;
 };
 
@@ -167,6 +171,7 @@ std::vector<uint32_t> particle_tree(const stipple::bake::RawScene& scene,
 void add_look_options(stipple::cli::Parser& p, Options* o) {
     p.flag("--looks", &o->looks)
         .flag("--particles", &o->particles)
+        .flag("--curvature", &o->curvature)
         .custom("--transparent", [&p, o](const std::string& name, const std::string& v) {
             size_t at = 0;
             while (at <= v.size()) {
@@ -331,6 +336,13 @@ void print_summary(const Options& o, const stipple::bake::RawScene& scene,
         j["stroke_points"] = check.strokes.point_count;
         j["stroke_bytes"] = check.section_size[stipple::kSectionStrokes];
     }
+    if (check.points.curvature_angle) {  // CURV: its bytes and the confident share
+        uint32_t confident = 0;
+        for (uint32_t i = 0; i < check.points.point_count; ++i)
+            confident += check.points.curvature_confidence[i] >= stipple::kCurvatureConfident;
+        j["curvature_bytes"] = check.section_size[stipple::kSectionCurvature];
+        j["curvature_confident"] = fixed(confident / n, 3);
+    }
     j["seconds"] = fixed(seconds, 3);
     stipple::cli::print_json(j);
 }
@@ -429,7 +441,8 @@ int main(int argc, char** argv) {
     if (o.looks) looks = bake_looks(scene, points, LooksConfig{true, o.normals.crease_degrees});
     const std::vector<uint8_t> bytes =
         encode_asset(scene, points, strokes, looks,
-                     o.particles ? particle_tree(scene, points) : std::vector<uint32_t>());
+                     o.particles ? particle_tree(scene, points) : std::vector<uint32_t>(),
+                     o.curvature ? bake_curvature(scene, points) : BakedCurvature());
     on_progress("verify", 0, &progress);
     // Read the asset back with the runtime's validating loader before writing it, so a
     // bake never leaves an asset the runtime would refuse.

@@ -418,11 +418,16 @@ std::vector<float> distance_to_outside(const Mask& mask) {
     return out;
 }
 
-FramePair frame_pair(const std::vector<Dot>& before, const Mask& mask_before,
-                     const std::vector<float>& distance_before, const std::vector<Dot>& after,
-                     const Mask& mask_after, const std::vector<float>& distance_after,
-                     float margin) {
+namespace {
+
+// frame_pair over id sets; `hidden_before` / `hidden_after` null when occlusion is unknown.
+FramePair compare_frames(const std::vector<Dot>& before, const Mask& mask_before,
+                         const std::vector<float>& distance_before,
+                         const std::vector<uint64_t>* hidden_before, const std::vector<Dot>& after,
+                         const Mask& mask_after, const std::vector<float>& distance_after,
+                         const std::vector<uint64_t>* hidden_after, float margin) {
     FramePair r;
+    r.occlusion_known = hidden_before && hidden_after;
     const std::vector<uint64_t> ids_before = sorted_ids(before), ids_after = sorted_ids(after);
     size_t kept = 0;
     for (uint64_t id : ids_before) kept += contains(ids_after, id);
@@ -431,15 +436,48 @@ FramePair frame_pair(const std::vector<Dot>& before, const Mask& mask_before,
     for (const Dot& d : after) {
         if (contains(ids_before, d.id)) continue;
         ++r.appeared;
-        r.pops += d.size > big_after && deep_inside(d, mask_after, distance_after, margin);
+        const bool pop = d.size > big_after && deep_inside(d, mask_after, distance_after, margin);
+        const bool uncovered = r.occlusion_known && contains(*hidden_before, d.id);
+        r.pops += pop;
+        r.disoccluded += uncovered;
+        r.pops_unoccluded += pop && !uncovered;
     }
     for (const Dot& d : before) {
         if (contains(ids_after, d.id)) continue;
         ++r.vanished;
-        r.pops += d.size > big_before && deep_inside(d, mask_before, distance_before, margin);
+        const bool pop =
+            d.size > big_before && deep_inside(d, mask_before, distance_before, margin);
+        const bool covered = r.occlusion_known && contains(*hidden_after, d.id);
+        r.pops += pop;
+        r.occluded += covered;
+        r.pops_unoccluded += pop && !covered;
     }
     r.pop_share = after.empty() ? 0.0 : double(r.pops) / double(after.size());
+    r.pop_share_unoccluded = after.empty() ? 0.0 : double(r.pops_unoccluded) / double(after.size());
+    // An id listed twice in `before` but occluded once still leaves the set at most once.
+    const size_t seen = ids_before.size() - std::min(r.occluded, ids_before.size());
+    r.persistence_unoccluded = seen == 0 ? 1.0 : double(kept) / double(seen);
     return r;
+}
+
+}  // namespace
+
+FramePair frame_pair(const std::vector<Dot>& before, const Mask& mask_before,
+                     const std::vector<float>& distance_before, const std::vector<Dot>& after,
+                     const Mask& mask_after, const std::vector<float>& distance_after,
+                     float margin) {
+    return compare_frames(before, mask_before, distance_before, nullptr, after, mask_after,
+                          distance_after, nullptr, margin);
+}
+
+FramePair frame_pair(const std::vector<Dot>& before, const Mask& mask_before,
+                     const std::vector<float>& distance_before,
+                     const std::vector<Dot>& hidden_before, const std::vector<Dot>& after,
+                     const Mask& mask_after, const std::vector<float>& distance_after,
+                     const std::vector<Dot>& hidden_after, float margin) {
+    const std::vector<uint64_t> hb = sorted_ids(hidden_before), ha = sorted_ids(hidden_after);
+    return compare_frames(before, mask_before, distance_before, &hb, after, mask_after,
+                          distance_after, &ha, margin);
 }
 
 FramePair frame_pair(const std::vector<Dot>& before, const Mask& mask_before,
@@ -452,8 +490,9 @@ Coherence summarize(const std::vector<FramePair>& pairs) {
     Coherence c;
     c.pairs = pairs.size();
     if (pairs.empty()) return c;
-    c.worst_persistence = 2;
-    c.max_pop_share = -1;
+    c.worst_persistence = c.worst_persistence_unoccluded = 2;
+    c.max_pop_share = c.max_pop_share_unoccluded = -1;
+    c.occlusion_known = true;
     for (size_t i = 0; i < pairs.size(); ++i) {
         const FramePair& p = pairs[i];
         c.mean_persistence += p.persistence;
@@ -463,9 +502,23 @@ Coherence summarize(const std::vector<FramePair>& pairs) {
             c.worst_persistence = p.persistence, c.worst_persistence_pair = int(i);
         if (p.pop_share > c.max_pop_share)
             c.max_pop_share = p.pop_share, c.max_pop_share_pair = int(i);
+        c.occlusion_known = c.occlusion_known && p.occlusion_known;
+        c.occluded += p.occluded;
+        c.disoccluded += p.disoccluded;
+        c.pops_unoccluded += p.pops_unoccluded;
+        c.mean_persistence_unoccluded += p.persistence_unoccluded;
+        c.mean_pop_share_unoccluded += p.pop_share_unoccluded;
+        if (p.persistence_unoccluded < c.worst_persistence_unoccluded)
+            c.worst_persistence_unoccluded = p.persistence_unoccluded,
+            c.worst_persistence_unoccluded_pair = int(i);
+        if (p.pop_share_unoccluded > c.max_pop_share_unoccluded)
+            c.max_pop_share_unoccluded = p.pop_share_unoccluded,
+            c.max_pop_share_unoccluded_pair = int(i);
     }
     c.mean_persistence /= double(pairs.size());
     c.mean_pop_share /= double(pairs.size());
+    c.mean_persistence_unoccluded /= double(pairs.size());
+    c.mean_pop_share_unoccluded /= double(pairs.size());
     return c;
 }
 

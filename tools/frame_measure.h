@@ -107,10 +107,20 @@ std::vector<float> distance_to_outside(const Mask& mask);
 //                object, not at its outline where dots legitimately come and go;
 //   pop_share:   pops / number of dots in f+1 (0 when f+1 has none).
 // Duplicate ids within one frame are counted once for the id sets.
+// With the dots each frame sized but the mesh in front hid (stipple-play --hidden-out,
+// pipeline_hidden_dots), occlusion is told apart from dots the stippling dropped:
+//   occluded:    vanished dots that f+1 still draws but hides (a leg passing in front);
+//   disoccluded: appeared dots that f drew hidden (the leg passing on);
+//   persistence_unoccluded: |ids(f) ∩ ids(f+1)| / (|ids(f)| - occluded) (1 when that is 0);
+//   pops_unoccluded, pop_share_unoccluded: the pops that are neither occluded nor disoccluded.
+// Without them (occlusion_known false) the *_unoccluded fields equal the plain ones.
 struct FramePair {
     double persistence = 1;
     size_t appeared = 0, vanished = 0, pops = 0;
     double pop_share = 0;
+    bool occlusion_known = false;
+    size_t occluded = 0, disoccluded = 0, pops_unoccluded = 0;
+    double persistence_unoccluded = 1, pop_share_unoccluded = 0;
 };
 constexpr float kPopMargin = 4.0f;
 FramePair frame_pair(const std::vector<Dot>& before, const Mask& mask_before,
@@ -121,13 +131,26 @@ FramePair frame_pair(const std::vector<Dot>& before, const Mask& mask_before,
                      const std::vector<float>& distance_before, const std::vector<Dot>& after,
                      const Mask& mask_after, const std::vector<float>& distance_after,
                      float margin = kPopMargin);
+// The same with the hidden dots of both frames (the occlusion-aware fields).
+FramePair frame_pair(const std::vector<Dot>& before, const Mask& mask_before,
+                     const std::vector<float>& distance_before,
+                     const std::vector<Dot>& hidden_before, const std::vector<Dot>& after,
+                     const Mask& mask_after, const std::vector<float>& distance_after,
+                     const std::vector<Dot>& hidden_after, float margin = kPopMargin);
 
 // Summary of a sequence of pairs (pair i is frames i -> i + 1 of the sequence). Worst and max
 // give the pair index; all zero (and -1) for an empty sequence.
+// The *_unoccluded values summarise the pairs' occlusion-aware fields (occlusion_known: every
+// pair had hidden dots).
 struct Coherence {
     size_t pairs = 0, pops = 0;
     double mean_persistence = 0, worst_persistence = 0, mean_pop_share = 0, max_pop_share = 0;
     int worst_persistence_pair = -1, max_pop_share_pair = -1;
+    bool occlusion_known = false;
+    size_t occluded = 0, disoccluded = 0, pops_unoccluded = 0;
+    double mean_persistence_unoccluded = 0, worst_persistence_unoccluded = 0;
+    double mean_pop_share_unoccluded = 0, max_pop_share_unoccluded = 0;
+    int worst_persistence_unoccluded_pair = -1, max_pop_share_unoccluded_pair = -1;
 };
 Coherence summarize(const std::vector<FramePair>& pairs);
 

@@ -51,7 +51,7 @@ const char* kEvennessUsage =
     "  clump_share, blocks_inside, empty_blocks, empty_share}.\n";
 
 const char* kCoherenceUsage =
-    "usage: stipple-measure coherence DIR [--from N] [--to N] [--contours DIR2]\n"
+    "usage: stipple-measure coherence DIR [--from N] [--to N] [--contours DIR2] [--hidden]\n"
     "  Reads DIR/dots_NNNN.csv and DIR/mask_NNNN.png for frames N..M and measures each\n"
     "  consecutive pair: persistence, appeared, vanished, pops (big dots appearing or vanishing\n"
     "  more than 4 px inside the mask), pop_share. Default: from 0 (or the first dots file) to\n"
@@ -61,6 +61,10 @@ const char* kCoherenceUsage =
     "                   silhouettes on: their line pixels (luminance < 0.5) leave the mask, so\n"
     "                   'away from silhouettes' also means away from inner contours (a leg\n"
     "                   passing in front of the other)\n"
+    "  --hidden         also read DIR/hidden_NNNN.csv (stipple-play --hidden-out: dots sized\n"
+    "                   but hidden by the mesh in front) and tell occlusion apart: occluded,\n"
+    "                   disoccluded, persistence_unoccluded, pops_unoccluded,\n"
+    "                   pop_share_unoccluded per pair, and their summary (docs/measure.md)\n"
     "  Prints {dir, from, to, pairs: [...], summary: {...}}.\n";
 
 const char* kFramesUsage =
@@ -173,6 +177,13 @@ Json pair_json(long from, long to, size_t dots_before, size_t dots_after, const 
     j["vanished"] = p.vanished;
     j["pops"] = p.pops;
     j["pop_share"] = number(p.pop_share);
+    if (p.occlusion_known) {
+        j["occluded"] = p.occluded;
+        j["disoccluded"] = p.disoccluded;
+        j["persistence_unoccluded"] = number(p.persistence_unoccluded);
+        j["pops_unoccluded"] = p.pops_unoccluded;
+        j["pop_share_unoccluded"] = number(p.pop_share_unoccluded);
+    }
     return j;
 }
 
@@ -187,6 +198,17 @@ Json summary_json(const m::Coherence& c, const std::vector<long>& pair_start) {
     j["max_pop_share"] = number(c.max_pop_share);
     j["max_pop_share_from"] = frame_of(c.max_pop_share_pair);
     j["pops"] = c.pops;
+    if (c.occlusion_known) {
+        j["occluded"] = c.occluded;
+        j["disoccluded"] = c.disoccluded;
+        j["mean_persistence_unoccluded"] = number(c.mean_persistence_unoccluded);
+        j["worst_persistence_unoccluded"] = number(c.worst_persistence_unoccluded);
+        j["worst_persistence_unoccluded_from"] = frame_of(c.worst_persistence_unoccluded_pair);
+        j["mean_pop_share_unoccluded"] = number(c.mean_pop_share_unoccluded);
+        j["max_pop_share_unoccluded"] = number(c.max_pop_share_unoccluded);
+        j["max_pop_share_unoccluded_from"] = frame_of(c.max_pop_share_unoccluded_pair);
+        j["pops_unoccluded"] = c.pops_unoccluded;
+    }
     return j;
 }
 
@@ -279,16 +301,22 @@ void remove_contours(const std::string& lines_path, m::Mask* mask) {
 }
 
 CoherenceJson coherence_json(const std::string& dir, const std::vector<long>& frames,
-                             const std::string& contours = std::string()) {
+                             const std::string& contours = std::string(), bool hidden = false) {
     std::vector<m::FramePair> pairs;
     std::vector<long> pair_start;
     Json list = Json::array();
     std::vector<m::Dot> before, after;
     m::Mask mask_before, mask_after;
     std::vector<float> dist_before, dist_after;
+    std::vector<m::Dot> hidden_before, hidden_after;  // --hidden
     long previous = -2;
     for (long f : frames) {
         after = load_dots(numbered(dir, "dots", f, "csv"));
+        if (hidden) {
+            const std::string hidden_path = numbered(dir, "hidden", f, "csv");
+            if (!file_exists(hidden_path)) die("missing hidden dots file '" + hidden_path + "'");
+            hidden_after = load_dots(hidden_path);
+        }
         const std::string mask_path = numbered(dir, "mask", f, "png");
         if (!file_exists(mask_path)) die("missing mask '" + mask_path + "'");
         mask_after = load_mask(mask_path);
@@ -299,12 +327,16 @@ CoherenceJson coherence_json(const std::string& dir, const std::vector<long>& fr
                 die("size mismatch: masks of frames " + std::to_string(previous) + " and " +
                     std::to_string(f) + " differ in size");
             const m::FramePair p =
-                m::frame_pair(before, mask_before, dist_before, after, mask_after, dist_after);
+                hidden ? m::frame_pair(before, mask_before, dist_before, hidden_before, after,
+                                       mask_after, dist_after, hidden_after)
+                       : m::frame_pair(before, mask_before, dist_before, after, mask_after,
+                                       dist_after);
             pairs.push_back(p);
             pair_start.push_back(previous);
             list.push_back(pair_json(previous, f, before.size(), after.size(), p));
         }
         before.swap(after);
+        hidden_before.swap(hidden_after);
         mask_before = std::move(mask_after);
         dist_before.swap(dist_after);
         previous = f;
@@ -315,10 +347,12 @@ CoherenceJson coherence_json(const std::string& dir, const std::vector<long>& fr
 int coherence(int argc, char** argv) {
     std::string dir, contours;
     long from = -1, to = -1;
+    bool hidden = false;
     stipple::cli::Parser p("stipple-measure", kCoherenceUsage);
     p.command("coherence")
         .positional("directory", &dir)
         .text("--contours", &contours)
+        .flag("--hidden", &hidden)
         .integer("--from", 0, kMaxFrameNumber, &from)
         .integer("--to", 0, kMaxFrameNumber, &to);
     p.parse(argc, argv, 2);
@@ -342,7 +376,7 @@ int coherence(int argc, char** argv) {
     if (frames.size() < 2)
         die("coherence needs at least two consecutive dots files in '" + dir + "'");
     if (!contours.empty()) check_dir(contours);
-    const CoherenceJson c = coherence_json(dir, frames, contours);
+    const CoherenceJson c = coherence_json(dir, frames, contours, hidden);
     Json o;
     o["dir"] = dir;
     o["from"] = frames.front();

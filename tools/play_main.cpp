@@ -72,6 +72,7 @@ stipple::FrameConfig pipeline_config(const Options& o, const Clips& clips) {
     pc.frame_blend_clip = clips.second;
     pc.relevance_update = o.relevance_update;
     pc.lod = o.lod;
+    pc.threads = o.threads;
     pc.dark_tone = float(o.dark_tone);
     pc.refinement_budget = uint32_t(o.refinement_budget);
     pc.constant_tone = float(o.tone);
@@ -100,6 +101,8 @@ stipple::FrameConfig pipeline_config(const Options& o, const Clips& clips) {
     pc.style = stipple::Style(o.style);  // looks: runtime/style.h
     if (o.particle_style >= 0)           // strokes instead of stipples: docs/particles.md
         pc.particle_style = &stipple::particle_style_at(o.particle_style);
+    pc.particle_fades = o.particle_fades;
+    pc.particle_budget = uint32_t(o.particle_budget);
     pc.toon_bands = int(o.toon_bands);
     pc.toon_ink = float(o.toon_ink);
     pc.tone_gamma = float(o.tone_gamma);
@@ -154,6 +157,10 @@ void write_frame(const Options& o, long f, stipple::Pipeline* pipeline, Outputs*
         !stipple::play::write_dots(*pipeline, out->depth.get(), out->dot_scratch.get(),
                                    frame_path(o, "dots", f, "csv")))
         die("cannot write dots file in '" + o.out + "'");
+    if (o.hidden_out &&
+        !stipple::play::write_hidden_dots(*pipeline, out->depth.get(), out->dot_scratch.get(),
+                                          frame_path(o, "hidden", f, "csv")))
+        die("cannot write hidden dots file in '" + o.out + "'");
     if (o.strokes_out && !stipple::play::write_strokes(*pipeline, out->depth.get(),
                                                        frame_path(o, "strokes", f, "csv")))
         die("cannot write strokes file in '" + o.out + "'");

@@ -140,6 +140,7 @@ void add_render_options(stipple::cli::Parser& p, Options& o) {
                 })
         .flag("--no-relevance-update", &o.relevance_update, false)
         .flag("--no-lod", &o.lod, false)
+        .integer("--threads", kLimits.threads.min, kLimits.threads.max, &o.threads)
         .number("--dark-tone", kLimits.dark_tone.min, kLimits.dark_tone.max, &o.dark_tone)
         .integer("--refinement-budget", kLimits.refinement_budget.min,
                  kLimits.refinement_budget.max, &o.refinement_budget)
@@ -161,6 +162,7 @@ void add_render_options(stipple::cli::Parser& p, Options& o) {
                  long(kLimits.stroke_vertex_budget.max), &o.stroke_budget)
         .flag("--roots-out", &o.roots_out)
         .flag("--dots-out", &o.dots_out)
+        .flag("--hidden-out", &o.hidden_out)
         .flag("--strokes-out", &o.strokes_out)
         .flag("--mask-out", &o.mask_out)
         .flag("--no-png", &o.png, false)
@@ -198,7 +200,10 @@ void add_look_options(stipple::cli::Parser& p, Options& o) {
         .number("--tone-gamma", kLimits.tone_gamma.min, kLimits.tone_gamma.max, &o.tone_gamma)
         .number("--tone-contrast", kLimits.tone_contrast.min, kLimits.tone_contrast.max,
                 &o.tone_contrast)
-        .flag("--no-creases", &o.creases, false);
+        .flag("--no-creases", &o.creases, false)
+        .flag("--particle-fades", &o.particle_fades)
+        .integer("--particle-budget", long(kLimits.particle_budget.min),
+                 long(kLimits.particle_budget.max), &o.particle_budget);
 }
 
 }  // namespace
@@ -215,6 +220,9 @@ Options parse(int argc, char** argv) {
     if (o.out.empty() && !o.win.window) die("no output directory: pass --out DIR");
     if (o.strokes_out && o.particle_style < 0)
         die("--strokes-out needs a particle style (--style painterly-long, ...)");
+    if (o.hidden_out && !o.dots_out) die("--hidden-out needs --dots-out");
+    if (o.particle_fades && o.particle_style < 0)
+        die("--particle-fades needs a particle style (--style painterly-long, ...)");
     if (o.gpu_path && (o.dots_out || o.roots_out))
         die("--dots-out and --roots-out need --path cpu (the GPU path keeps its dots on the GPU)");
     if (!o.win.window && (o.win.fullscreen || o.win.fixed || !o.win.screenshot.empty()))

@@ -36,8 +36,10 @@ struct Options {
     bool silhouettes = kDefaults.silhouettes;
     bool relevance_update = kDefaults.relevance_update;
     bool lod = kDefaults.lod;
+    int threads = kDefaults.threads;  // --threads: the point stages' threads (0: hardware's)
     bool dots_out = false, png = true, apng = true, stats = false;
     bool mask_out = false;
+    bool hidden_out = false;  // --hidden-out: hidden_NNNN.csv beside dots_NNNN.csv
     bool check_gl = false;
     bool strokes = kDefaults.strokes, roots_out = false;
     int stroke_quality = kDefaults.stroke_quality;
@@ -57,7 +59,9 @@ struct Options {
     bool creases = kDefaults.creases;
     int particle_style = -1;   // --style NAME of a particle style: its particle_style_at index
     bool strokes_out = false;  // --strokes-out: strokes_NNNN.csv per frame
-    long rss_every = 0;        // > 0: DIR/rss.csv gets a row every rss_every frames
+    bool particle_fades = kDefaults.particle_fades;          // --particle-fades
+    long particle_budget = long(kDefaults.particle_budget);  // --particle-budget N
+    long rss_every = 0;                // > 0: DIR/rss.csv gets a row every rss_every frames
     stipple::play::WindowOptions win;  // --window (tools/play_window.h)
     bool frames_given = false;         // a window runs until Esc without --frames
 };

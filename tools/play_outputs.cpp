@@ -7,17 +7,32 @@
 
 namespace stipple::play {
 
-// Writes the dots the last frame shows (pipeline_visible_dots) as CSV.
-bool write_dots(const Pipeline& p, const float* depth, VisibleDot* scratch,
-                const std::string& path) {
+namespace {
+
+bool write_dot_list(const Pipeline& p, const float* depth, VisibleDot* scratch,
+                    const std::string& path, bool hidden) {
     FILE* f = std::fopen(path.c_str(), "w");
     if (!f) return false;
     std::fputs("id,x,y,size\n", f);
-    const uint32_t n = pipeline_visible_dots(p, depth, scratch, p.point_capacity);
+    const uint32_t n = hidden ? pipeline_hidden_dots(p, depth, scratch, p.point_capacity)
+                              : pipeline_visible_dots(p, depth, scratch, p.point_capacity);
     for (uint32_t i = 0; i < n; ++i)
         std::fprintf(f, "%llu,%.2f,%.2f,%.3f\n", static_cast<unsigned long long>(scratch[i].id),
                      double(scratch[i].x), double(scratch[i].y), double(scratch[i].size));
     return std::fclose(f) == 0;
+}
+
+}  // namespace
+
+// Writes the dots the last frame shows (pipeline_visible_dots) as CSV.
+bool write_dots(const Pipeline& p, const float* depth, VisibleDot* scratch,
+                const std::string& path) {
+    return write_dot_list(p, depth, scratch, path, false);
+}
+
+bool write_hidden_dots(const Pipeline& p, const float* depth, VisibleDot* scratch,
+                       const std::string& path) {
+    return write_dot_list(p, depth, scratch, path, true);
 }
 
 // Writes the object mask of the last frame from the mesh pass's depth (bottom row first, 1 =
@@ -56,7 +71,9 @@ bool write_strokes(const Pipeline& p, const float* depth, const std::string& pat
         const StrokeInstance& st = s.strokes[k];
         const int px = int(std::floor(st.x)), py = int(std::floor(st.y));
         bool visible = px >= 0 && py >= 0 && px < w && py < h && st.depth <= 1.0f;
-        if (visible) {  // as particle_visible_strokes and the stroke shader test it
+        // As particle_visible_strokes and the stroke shader test it; with visibility fades the
+        // strokes were drawn untested, their visibility in their opacity.
+        if (visible && !s.visibility.applied) {
             const float mesh = depth[size_t(h - 1 - py) * size_t(w) + size_t(px)];
             visible = !(mesh < 1.0f && st.depth > mesh + 1e-5f);
         }

@@ -12,6 +12,11 @@ namespace stipple::play {
 bool write_dots(const Pipeline& p, const float* depth, VisibleDot* scratch,
                 const std::string& path);
 
+// Writes the dots the last frame sized but the mesh in front hides (pipeline_hidden_dots) in
+// the same CSV form.
+bool write_hidden_dots(const Pipeline& p, const float* depth, VisibleDot* scratch,
+                       const std::string& path);
+
 // Writes the object mask of the last frame from the mesh pass's depth (bottom row first, 1 =
 // background): white where depth < 1, black elsewhere, top row first like the frame PNGs.
 // `rgba` is scratch of width * height * 4 bytes.

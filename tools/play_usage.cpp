@@ -95,6 +95,12 @@ std::string render_usage() {
            "6.4)\n"
            "  --no-lod                run place, relevance and size on every point (default: only\n"
            "                          clusters in view, cut where no dot can draw; docs/lod.md)\n"
+           "  --threads N             threads for place, relevance and size over point ranges,\n"
+           "                          byte-identical output (default " +
+           std::to_string(defaults().threads) + ", 0 = the hardware's up to " +
+           std::to_string(stipple::kMaxAutoThreads) + ", max " +
+           std::to_string(kLimits.threads.max) +
+           ")\n"
            "  --dark-tone T           darkest tone lighting asks for, thesis §8.4 (default " +
            g(defaults().dark_tone) + ", " + range(kLimits.dark_tone) +
            ")\n"
@@ -140,6 +146,7 @@ std::string render_usage() {
            "                          each stroke's drawn root and its host surface point, "
            "pixels)\n"
            "  --dots-out              also write dots_NNNN.csv (id,x,y,size per drawn dot)\n"
+           "  --hidden-out            with --dots-out: hidden_NNNN.csv, sized dots the mesh hides\n"
            "  --strokes-out           particle styles: also write strokes_NNNN.csv\n"
            "                          (id,x,y,angle,size,width,alpha,visible per stroke)\n"
            "  --mask-out              also write mask_NNNN.png: white where the mesh covers the\n"
@@ -168,6 +175,13 @@ std::string look_usage() {
            "  --style P               or a particle style (GI'01, docs/particles.md): strokes\n"
            "                          instead of dots: painterly-long|painterly-dab|sketch|\n"
            "                          cartoon|graftals|charcoal|two-tone|ink\n"
+           "  --particle-fades        particle styles: strokes the body hides fade (a depth\n"
+           "                          readback per frame) instead of popping\n"
+           "  --particle-budget N     particle styles: particles of the tree, baked + temporary\n"
+           "                          (default " +
+           std::to_string(defaults().particle_budget) + ", max " +
+           std::to_string(kLimits.particle_budget.max) +
+           "; about 220 bytes each)\n"
            "  --toon-bands N          toon ramp bands, 2 or 3 (default " +
            std::to_string(defaults().toon_bands) +
            ")\n"

@@ -29,6 +29,8 @@ TEST(ParticleAllocation, ParticleFramesAllocateNothingAfterInit) {
         ASSERT_NE(style, nullptr);
         stipple::FrameConfig config;
         stipple::particle_style_frame_config(*style, &config);
+        const bool fades = std::string(name) == "two-tone";  // visibility fades: a readback
+        config.depth_readback = fades;
         auto pipeline = std::make_unique<stipple::Pipeline>();
         auto stage = std::make_unique<stipple::ParticleStage>();
         ASSERT_TRUE(stipple::pipeline_init(pipeline.get(), asset, gl.gl(), config).ok());
@@ -36,6 +38,9 @@ TEST(ParticleAllocation, ParticleFramesAllocateNothingAfterInit) {
             stipple::particle_stage_init(stage.get(), asset, *style, config.width, config.height)
                 .ok());
         ASSERT_TRUE(stipple::particle_stage_init_gl(stage.get(), gl.gl()).ok());
+        if (fades) {
+            ASSERT_TRUE(stipple::particle_stage_enable_visibility_fades(stage.get()).ok());
+        }
         stipple::AnimationState state;
         state.clip = 0;
         stipple::pipeline_particle_frame(pipeline.get(), stage.get(), state, nullptr);
@@ -54,6 +59,12 @@ TEST(ParticleAllocation, ParticleFramesAllocateNothingAfterInit) {
         }
         g_counting = false;
         EXPECT_EQ(g_allocations.load(), 0) << name;
+        // The close-up unfolded past the bake: temporary particles were listed.
+        uint32_t temporary = 0;
+        for (uint32_t k = 0; k < stage->set.count; ++k)
+            temporary += stage->set.list[k] >= asset.points.point_count;
+        EXPECT_GT(temporary, 0u) << name;
+        EXPECT_EQ(stage->visibility.applied, fades) << name;
         EXPECT_GT(most, 20u) << name << ": the frames drew strokes";
         stipple::particle_stage_destroy(stage.get());
         stipple::pipeline_destroy(pipeline.get());

@@ -43,11 +43,12 @@ const CorpusAsset kCorpus[] = {
 
 constexpr float kOutline = 2.0f;
 
-// One picture as measured: RGBA top row first, the mesh pass's coverage, the dots it shows.
+// One picture as measured: RGBA top row first, the mesh pass's coverage, the dots it shows
+// and the dots it sized but the mesh in front hides (pipeline_hidden_dots).
 struct Shot {
     measure::Image image;
     measure::Mask mask;
-    std::vector<measure::Dot> dots;
+    std::vector<measure::Dot> dots, hidden;
 };
 
 // A baked asset loaded into a pipeline on this process's headless context.
@@ -81,21 +82,7 @@ class Stage {
         return true;
     }
 
-    // With `outline`, a second picture of the same pose draws only the silhouette lines
-    // (thesis §3.2: outer outline and inner contours where a part passes in front of
-    // another); their pixels leave the mask, so "away from silhouettes" means away from both.
-    Shot shoot(float zoom, float tone, float time = 0.0f, float yaw = 0.0f, bool outline = false) {
-        Shot s = draw(zoom, tone, time, yaw);
-        if (!outline) return s;
-        pipeline_->config.silhouettes = true;
-        const Shot lines = draw(zoom, 0.0f, time, yaw);
-        pipeline_->config.silhouettes = false;
-        for (size_t i = 0; i < s.mask.inside.size(); ++i)
-            if (measure::luminance(&lines.image.rgba[i * 4]) < 0.5) s.mask.inside[i] = 0;
-        return s;
-    }
-
-    Shot draw(float zoom, float tone, float time, float yaw) {
+    Shot shoot(float zoom, float tone, float time = 0.0f, float yaw = 0.0f) {
         FrameConfig view = pipeline_->config;
         view.zoom = zoom;
         view.constant_tone = tone;
@@ -125,6 +112,11 @@ class Stage {
         s.dots.resize(n);
         for (uint32_t i = 0; i < n; ++i)
             s.dots[i] = {dots_[i].id, dots_[i].x, dots_[i].y, dots_[i].size};
+        const uint32_t h =
+            pipeline_hidden_dots(*pipeline_, depth_.data(), dots_.data(), uint32_t(dots_.size()));
+        s.hidden.resize(h);
+        for (uint32_t i = 0; i < h; ++i)
+            s.hidden[i] = {dots_[i].id, dots_[i].x, dots_[i].y, dots_[i].size};
         return s;
     }
 
@@ -173,7 +165,14 @@ class Corpus : public ::testing::TestWithParam<CorpusAsset> {};
 
 // Issue 7: tone within +-10% of the target at every zoom from 0.25 to 16 (targets 0.1, 0.3,
 // 0.6), and a target of 0.9 draws at least 0.8. Values printed with ~ come from fewer than
-// 400 dots' worth of ink and are checked within their shot noise (see tolerance).
+// 400 dots' worth of ink and are checked within their shot noise (see tolerance) only: at
+// zoom 0.25 a target of 0.1 is 30-50 dots, +-16% from one view to the next (horse, 12 yaws:
+// 0.074-0.117 of ink seen per mask pixel), and seen ink is also 3-10% low on average there
+// (horse 0.091, Spot 0.097, teapot 0.090 over 12 yaws) although the size rule lays down the
+// same total ink as at zoom 1 (within 1%): with pixels 4x wider in world units, the one-
+// pixel visibility test drops 2.6-6.5% of the dots that zoom 1 shows (centre off the mesh's
+// coverage at the outline, or on a nearer part), which the 2 px inset only partly leaves out
+// (docs/tone.md, "Small objects").
 TEST_P(Corpus, ToneHoldsAtEveryZoom) {
     const CorpusAsset& a = GetParam();
     Stage stage;
@@ -273,27 +272,45 @@ TEST_P(Stretch, ToneOfTheStretchedBandFollowsTheRestBand) {
 
 INSTANTIATE_TEST_SUITE_P(Issue7, Stretch, ::testing::Values(20000, 100000));
 
-// Issue 7: the CesiumMan walk at 30 fps (three-quarter view, as the demo) keeps >= 97% of its
-// dots from frame to frame on average and >= 92% in the worst pair; big dots that blink on or
-// off away from silhouettes (more than 4 px from the outline and from the inner contours
-// where a leg passes in front of the other) are at most 1% of a frame.
+// Issue 7: the CesiumMan walk at 30 fps keeps >= 97% of its dots from frame to frame on
+// average and >= 92% in the worst pair; big dots that blink on or off away from silhouettes
+// (more than 4 px inside the mask) are at most 1% of a frame. Measured at the default camera
+// (from the side, where the legs and arms pass in front of each other) and at the demo's
+// three-quarter view, with occlusion told apart (docs/measure.md, "Occlusion"): a dot that
+// vanishes because the other leg now hides it is drawn again once the leg has passed, so it
+// is not counted as lost; the plain numbers are printed beside (side view: mean 0.966, worst
+// 0.870, max pop share 10.7%, nearly all of it dots going behind a limb).
 TEST(Coherence, WalkKeepsItsDots) {
     Stage stage;
     std::string error;
     ASSERT_TRUE(stage.open("CesiumMan/CesiumMan.glb", "", nullptr, &error)) << error;
-    std::vector<measure::FramePair> pairs;
-    Shot before = stage.shoot(1.0f, 0.3f, 0.0f, -60.0f, true);
-    for (int f = 1; f < 60; ++f) {
-        Shot after = stage.shoot(1.0f, 0.3f, float(f) / 30.0f, -60.0f, true);
-        pairs.push_back(measure::frame_pair(before.dots, before.mask, after.dots, after.mask));
-        before = std::move(after);
+    for (float yaw : {0.0f, -60.0f}) {
+        std::vector<measure::FramePair> pairs;
+        Shot before = stage.shoot(1.0f, 0.3f, 0.0f, yaw);
+        std::vector<float> dist_before = measure::distance_to_outside(before.mask);
+        for (int f = 1; f < 60; ++f) {
+            Shot after = stage.shoot(1.0f, 0.3f, float(f) / 30.0f, yaw);
+            std::vector<float> dist_after = measure::distance_to_outside(after.mask);
+            pairs.push_back(measure::frame_pair(before.dots, before.mask, dist_before,
+                                                before.hidden, after.dots, after.mask, dist_after,
+                                                after.hidden));
+            before = std::move(after);
+            dist_before.swap(dist_after);
+        }
+        const measure::Coherence c = measure::summarize(pairs);
+        std::printf(
+            "walk, yaw %.0f: persistence mean %.4f worst %.4f (pair %d), max pop share "
+            "%.4f; told from occlusion (%zu dots went behind the mesh, %zu came out): "
+            "mean %.4f worst %.4f (pair %d), max pop share %.4f (pair %d)\n",
+            double(yaw), c.mean_persistence, c.worst_persistence, c.worst_persistence_pair,
+            c.max_pop_share, c.occluded, c.disoccluded, c.mean_persistence_unoccluded,
+            c.worst_persistence_unoccluded, c.worst_persistence_unoccluded_pair,
+            c.max_pop_share_unoccluded, c.max_pop_share_unoccluded_pair);
+        ASSERT_TRUE(c.occlusion_known);
+        EXPECT_GE(c.mean_persistence_unoccluded, 0.97) << "yaw " << yaw;
+        EXPECT_GE(c.worst_persistence_unoccluded, 0.92) << "yaw " << yaw;
+        EXPECT_LE(c.max_pop_share_unoccluded, 0.01) << "yaw " << yaw;
     }
-    const measure::Coherence c = measure::summarize(pairs);
-    std::printf("walk: mean persistence %.4f, worst %.4f (pair %d), max pop share %.4f\n",
-                c.mean_persistence, c.worst_persistence, c.worst_persistence_pair, c.max_pop_share);
-    EXPECT_GE(c.mean_persistence, 0.97);
-    EXPECT_GE(c.worst_persistence, 0.92);
-    EXPECT_LE(c.max_pop_share, 0.01);
 }
 
 // Issue 7: zooming from 1 to 16 over 150 frames pops no more than the walk: the run-time

@@ -71,6 +71,8 @@ TEST(FrameConfig, ValuesOutsideTheirRangeAreRejectedByName) {
         {"refinement_budget",
          [](FrameConfig* c) { c->refinement_budget = kFrameSettings.refinement_budget.max + 1; }},
         {"background", [](FrameConfig* c) { c->background[1] = 2.0f; }},
+        {"particle_budget",
+         [](FrameConfig* c) { c->particle_budget = kFrameSettings.particle_budget.max + 1; }},
     };
     for (const Case& k : cases) {
         FrameConfig in;

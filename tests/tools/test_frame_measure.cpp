@@ -270,6 +270,57 @@ TEST(FrameMeasure, FramePairPersistenceAndPops) {
     EXPECT_EQ(empty.pop_share, 0.0);
 }
 
+// The same pair with the hidden dots of both frames: 9 vanished behind the mesh of f+1
+// (occluded), 11 and 14 appeared from behind the mesh of f (disoccluded); what is left is
+// dot 10 vanishing at the edge and 12, 13 appearing: persistence 8 / (10 - 1), one pop (none
+// of 9, 11, 14 is one any more). A hidden id that was not lost changes nothing.
+TEST(FrameMeasure, FramePairTellsOcclusionApart) {
+    const m::Mask mask = rect_mask(100, 100, 10, 10, 90, 90);
+    std::vector<m::Dot> before, after;
+    for (uint64_t id = 1; id <= 8; ++id) before.push_back({id, 50.5f, 20.5f + 5 * float(id), 2});
+    before.push_back({9, 40.5f, 40.5f, 2});
+    before.push_back({10, 88.5f, 50.5f, 2});
+    for (uint64_t id = 1; id <= 8; ++id) after.push_back({id, 50.7f, 20.5f + 5 * float(id), 2});
+    after.push_back({11, 30.5f, 50.5f, 2});
+    after.push_back({12, 12.5f, 50.5f, 2});
+    after.push_back({13, 60.5f, 60.5f, 0.5f});
+    after.push_back({15, 35.5f, 35.5f, 2});  // appears deep inside from nowhere: a pop
+    const uint64_t far_id = (uint64_t(1) << 32) + 3;
+    after.push_back({far_id, 70.5f, 70.5f, 2});
+    const std::vector<m::Dot> hidden_before = {{11, 30.5f, 50.5f, 2}, {far_id, 70.5f, 70.5f, 2}};
+    const std::vector<m::Dot> hidden_after = {{9, 40.6f, 40.5f, 2}, {30, 20.5f, 20.5f, 2}};
+    const std::vector<float> d = m::distance_to_outside(mask);
+    const m::FramePair p =
+        m::frame_pair(before, mask, d, hidden_before, after, mask, d, hidden_after);
+    EXPECT_TRUE(p.occlusion_known);
+    EXPECT_DOUBLE_EQ(p.persistence, 0.8);  // the plain fields are unchanged
+    EXPECT_EQ(p.pops, 4u);
+    EXPECT_EQ(p.occluded, 1u);
+    EXPECT_EQ(p.disoccluded, 2u);
+    EXPECT_DOUBLE_EQ(p.persistence_unoccluded, 8.0 / 9.0);
+    EXPECT_EQ(p.pops_unoccluded, 1u);
+    EXPECT_DOUBLE_EQ(p.pop_share_unoccluded, 1.0 / 13.0);
+    // Without hidden dots the occlusion-aware fields are the plain ones.
+    const m::FramePair plain = m::frame_pair(before, mask, after, mask);
+    EXPECT_FALSE(plain.occlusion_known);
+    EXPECT_EQ(plain.occluded + plain.disoccluded, 0u);
+    EXPECT_DOUBLE_EQ(plain.persistence_unoccluded, plain.persistence);
+    EXPECT_EQ(plain.pops_unoccluded, plain.pops);
+    // Everything lost was occluded: full persistence.
+    const std::vector<m::Dot> all_hidden = {{9, 0, 0, 1}, {10, 0, 0, 1}};
+    EXPECT_DOUBLE_EQ(
+        m::frame_pair(before, mask, d, {}, after, mask, d, all_hidden).persistence_unoccluded, 1.0);
+    const m::Coherence c = m::summarize({p, plain});
+    EXPECT_FALSE(c.occlusion_known);  // one pair without hidden dots
+    EXPECT_TRUE(m::summarize({p, p}).occlusion_known);
+    EXPECT_EQ(c.occluded, 1u);
+    EXPECT_EQ(c.pops_unoccluded, 1u + plain.pops);
+    EXPECT_NEAR(c.mean_persistence_unoccluded, (8.0 / 9.0 + 0.8) / 2, 1e-12);
+    EXPECT_DOUBLE_EQ(c.worst_persistence_unoccluded, 0.8);
+    EXPECT_EQ(c.worst_persistence_unoccluded_pair, 1);
+    EXPECT_EQ(c.max_pop_share_unoccluded_pair, 1);
+}
+
 TEST(FrameMeasure, SequenceSummary) {
     std::vector<m::FramePair> pairs(3);
     pairs[0].persistence = 1.0, pairs[0].pop_share = 0.0;

@@ -207,4 +207,29 @@ TEST(MeasureCli, BadInputIsAOneLineError) {
     }
 }
 
+// --hidden: dots each frame sized but hid behind the mesh (stipple-play --hidden-out) tell
+// occlusion apart: dot 3 vanished behind the mesh of frame 1, so it is neither lost nor a pop.
+TEST(MeasureCli, HiddenDotsTellOcclusionApart) {
+    const std::string dir = make_frames_dir("hidden");
+    const std::string q = "'" + dir + "'";
+    expect_error("coherence " + q + " --hidden", "hidden_0000.csv");
+    write_text(dir + "/hidden_0000.csv", "id,x,y,size\n");
+    write_text(dir + "/hidden_0001.csv", "id,x,y,size\n3,40.5,20.5,2\n");
+    nlohmann::json j = run_json("coherence " + q + " --hidden");
+    const nlohmann::json& p = j["pairs"][0];
+    EXPECT_NEAR(p["persistence"].get<double>(), 2.0 / 3.0, 1e-6);
+    EXPECT_EQ(p["pops"].get<int>(), 2);
+    EXPECT_EQ(p["occluded"].get<int>(), 1);
+    EXPECT_EQ(p["disoccluded"].get<int>(), 0);
+    EXPECT_NEAR(p["persistence_unoccluded"].get<double>(), 1.0, 1e-6);
+    EXPECT_EQ(p["pops_unoccluded"].get<int>(), 1);  // dot 4 appeared from nowhere
+    EXPECT_NEAR(j["summary"]["worst_persistence_unoccluded"].get<double>(), 1.0, 1e-6);
+    EXPECT_EQ(j["summary"]["pops_unoccluded"].get<int>(), 1);
+    // Without --hidden the output has no occlusion fields.
+    j = run_json("coherence " + q);
+    EXPECT_FALSE(j["pairs"][0].contains("occluded"));
+    EXPECT_FALSE(j["summary"].contains("pops_unoccluded"));
+    run("rm -rf " + q);
+}
+
 }  // namespace

@@ -1,0 +1,64 @@
+#include "runtime/point_simd.h"
+
+#include <atomic>
+#include <cstdlib>
+#include <cstring>
+
+namespace stipple {
+
+namespace {
+
+PointSimd detect() {
+    const char* forced = std::getenv("STIPPLE_SIMD");
+    if (forced && std::strcmp(forced, "baseline") == 0) return PointSimd::baseline;
+#if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2")) return PointSimd::avx2;
+#endif
+    return PointSimd::baseline;
+}
+
+// -1: not forced.
+std::atomic<int> g_forced{-1};
+
+}  // namespace
+
+PointSimd point_simd_detected() {
+    static const PointSimd detected = detect();  // thread-safe once
+    return detected;
+}
+
+PointSimd point_simd() {
+    const int forced = g_forced.load(std::memory_order_relaxed);
+    return forced < 0 ? point_simd_detected() : PointSimd(forced);
+}
+
+void point_simd_force(PointSimd simd) {
+    // Forcing avx2 on a CPU without it (or with STIPPLE_SIMD=baseline) stays baseline.
+    if (simd == PointSimd::avx2 && point_simd_detected() != PointSimd::avx2)
+        simd = PointSimd::baseline;
+    g_forced.store(int(simd), std::memory_order_relaxed);
+}
+
+const char* point_simd_name(PointSimd simd) {
+    return simd == PointSimd::avx2 ? "avx2" : "baseline";
+}
+
+SizeKernelFrame::SizeKernelFrame(const SizeParams& p)
+    : params(&p),
+      row_w{p.view_projection[0][3], p.view_projection[1][3], p.view_projection[2][3],
+            p.view_projection[3][3]},
+      focal(focal_pixels(p)),
+      table(p) {}
+
+#if !((defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__)))
+// No AVX2 anywhere else: point_simd() is never avx2 there, so these are never called.
+void place_points_avx2(const PointsView&, const uint32_t*, const float*, const float*,
+                       const uint32_t*, uint32_t, uint32_t, float*, float*) {}
+void recompute_relevance_avx2(const PointsView&, const float*, const float*, const float*,
+                              const uint32_t*, uint32_t, uint32_t, float*) {}
+void size_stipples_avx2(const SizeKernelFrame&, const float*, const float*, const float*,
+                        const uint32_t*, uint32_t, uint32_t, float*) {}
+#endif
+
+}  // namespace stipple

@@ -1,0 +1,57 @@
+// SIMD chosen at run time for the CPU point stages (issue 9 item 5). When the CPU has AVX2
+// (cpuid, once), place (Alg. 6.3), relevance (Alg. 6.4) and size (Alg. 3.2) run the kernels of
+// runtime/point_simd_avx2.cpp (compiled for AVX2 by a target pragma, with -ffp-contract=off
+// and no FMA): size 8 points per step; place and relevance one point per step with x, y, z in
+// the lanes of a vector (8 points per step needs gathers, which measured slower than the
+// scalar loads on a Zen 4). Otherwise the baseline: the scalar code of point_placement.cpp /
+// stipple_size.cpp (SSE2 scalar on x86-64; NEON targets keep it too).
+// Each kernel does the same IEEE operations in the same order as the scalar code (no FMA, no
+// reciprocal approximations, the same NaN behaviour in comparisons and clamps), so both paths
+// give the same bits (tests/runtime/test_point_stages.cpp checks it).
+#pragma once
+#include <cstdint>
+
+#include "runtime/asset.h"
+#include "runtime/stipple_size.h"
+
+namespace stipple {
+
+enum class PointSimd : uint8_t { baseline, avx2 };
+
+// The widest path this CPU runs (cpuid once), or baseline where the environment sets
+// STIPPLE_SIMD=baseline (read once, at the first call).
+PointSimd point_simd_detected();
+
+// The path the point stages use now: point_simd_detected() unless point_simd_force chose
+// another.
+PointSimd point_simd();
+
+// Forces a path for the whole process (tests and benches compare them); a path the CPU lacks
+// falls back to baseline. Call between frames, not while stages run.
+void point_simd_force(PointSimd simd);
+
+const char* point_simd_name(PointSimd simd);  // "baseline", "avx2"
+
+// What size's kernel reads once per frame (as stipple_size.cpp's own SizeFrame).
+struct SizeKernelFrame {
+    const SizeParams* params;
+    float row_w[4];  // row 3 of view_projection: clip depth w
+    float focal;     // focal_pixels(params)
+    InkTable table;
+    explicit SizeKernelFrame(const SizeParams& p);
+};
+
+// The AVX2 kernels over the points list[begin .. end) (list null: the points begin .. end);
+// each writes only those points' outputs. Only call them when point_simd() is avx2.
+void place_points_avx2(const PointsView& points, const uint32_t* indices, const float* positions,
+                       const float* normals, const uint32_t* list, uint32_t begin, uint32_t end,
+                       float* out_positions, float* out_normals);
+void recompute_relevance_avx2(const PointsView& points, const float* point_positions,
+                              const float* scale, const float* fallback_radius,
+                              const uint32_t* list, uint32_t begin, uint32_t end,
+                              float* out_radius);
+void size_stipples_avx2(const SizeKernelFrame& frame, const float* positions, const float* normals,
+                        const float* radius, const uint32_t* list, uint32_t begin, uint32_t end,
+                        float* out_size);
+
+}  // namespace stipple

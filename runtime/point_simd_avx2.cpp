@@ -1,0 +1,304 @@
+// AVX2 variants of the CPU point stages (runtime/point_simd.h): size 8 points per step,
+// place and relevance one point per step with x, y, z in the lanes of a vector. Each
+// kernel mirrors its scalar original operation by operation: same products, sums in the same
+// order, sqrt and divide (no rsqrt/rcp), the scalar code's comparisons and clamps as blends
+// with the same NaN behaviour, no FMA (the target is avx2 alone and this file is built with
+// -ffp-contract=off), so every lane gives the bits the scalar code gives.
+// Every header is included before the target pragma, and only intrinsics and this file's own
+// internal functions run under it, so no inline function shared with other files is compiled
+// for AVX2 (which the linker could pick for the baseline callers too).
+#include <cstddef>
+#include <cstdint>
+
+#include "runtime/point_simd.h"
+
+#if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
+#else
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#endif
+
+namespace stipple {
+
+namespace {
+
+using f8 = __m256;
+using i8 = __m256i;
+
+// The 8 point indices of a step: list[j ..] or j .., repeating the last one past `end` (those
+// lanes compute a valid point again and are not stored).
+inline i8 step_indices(const uint32_t* list, uint32_t j, uint32_t end, int* lanes) {
+    alignas(32) uint32_t idx[8];
+    const uint32_t n = end - j < 8u ? end - j : 8u;
+    for (uint32_t k = 0; k < 8; ++k) {
+        const uint32_t at = j + (k < n ? k : n - 1);
+        idx[k] = list ? list[at] : at;
+    }
+    *lanes = int(n);
+    return _mm256_load_si256(reinterpret_cast<const i8*>(idx));
+}
+
+inline i8 times3(i8 v) {
+    return _mm256_add_epi32(_mm256_add_epi32(v, v), v);
+}
+inline f8 splat(float x) {
+    return _mm256_set1_ps(x);
+}
+// cond ? a : b per lane (cond: an all-ones/zeros comparison mask).
+inline f8 select(f8 cond, f8 a, f8 b) {
+    return _mm256_blendv_ps(b, a, cond);
+}
+
+// Writes lanes 0 .. lanes - 1 of v to out[i] for each lane's index i.
+inline void store1(float* out, i8 index, int lanes, f8 v) {
+    alignas(32) uint32_t idx[8];
+    alignas(32) float vv[8];
+    _mm256_store_si256(reinterpret_cast<i8*>(idx), index);
+    _mm256_store_ps(vv, v);
+    for (int k = 0; k < lanes; ++k) out[idx[k]] = vv[k];
+}
+
+// 12 packed floats x0 y0 z0 .. z3 to x, y, z (4 lanes each; anim/simd.h's shuffles).
+inline void aos3_to_soa(__m128 a, __m128 b, __m128 c, __m128& x, __m128& y, __m128& z) {
+    const __m128 t0 = _mm_shuffle_ps(a, b, _MM_SHUFFLE(2, 2, 3, 0));
+    const __m128 t1 = _mm_shuffle_ps(b, c, _MM_SHUFFLE(1, 1, 2, 2));
+    x = _mm_shuffle_ps(t0, t1, _MM_SHUFFLE(2, 0, 1, 0));
+    const __m128 y01 = _mm_shuffle_ps(a, b, _MM_SHUFFLE(0, 0, 1, 1));
+    const __m128 y23 = _mm_shuffle_ps(b, c, _MM_SHUFFLE(2, 2, 3, 3));
+    y = _mm_shuffle_ps(y01, y23, _MM_SHUFFLE(2, 0, 2, 0));
+    const __m128 z01 = _mm_shuffle_ps(a, b, _MM_SHUFFLE(1, 1, 2, 2));
+    const __m128 z23 = _mm_shuffle_ps(c, c, _MM_SHUFFLE(3, 3, 0, 0));
+    z = _mm_shuffle_ps(z01, z23, _MM_SHUFFLE(2, 0, 2, 0));
+}
+// 8 consecutive points' x, y, z from p[0 .. 24).
+inline void load_xyz8(const float* p, f8& x, f8& y, f8& z) {
+    __m128 x0, y0, z0, x1, y1, z1;
+    aos3_to_soa(_mm_loadu_ps(p), _mm_loadu_ps(p + 4), _mm_loadu_ps(p + 8), x0, y0, z0);
+    aos3_to_soa(_mm_loadu_ps(p + 12), _mm_loadu_ps(p + 16), _mm_loadu_ps(p + 20), x1, y1, z1);
+    x = _mm256_set_m128(x1, x0);
+    y = _mm256_set_m128(y1, y0);
+    z = _mm256_set_m128(z1, z0);
+}
+// A point's x, y, z: 8 consecutive points' when `run` (j the first), else gathered.
+inline void xyz8(const float* base, bool run, uint32_t j, i8 i3, f8& x, f8& y, f8& z) {
+    if (run) return load_xyz8(base + size_t(j) * 3, x, y, z);
+    x = _mm256_i32gather_ps(base, i3, 4);
+    y = _mm256_i32gather_ps(base + 1, i3, 4);
+    z = _mm256_i32gather_ps(base + 2, i3, 4);
+}
+inline f8 one8(const float* base, bool run, uint32_t j, i8 i) {
+    return run ? _mm256_loadu_ps(base + j) : _mm256_i32gather_ps(base, i, 4);
+}
+inline void put8(float* base, bool run, uint32_t j, i8 i, int lanes, f8 v) {
+    if (run) return _mm256_storeu_ps(base + j, v);
+    store1(base, i, lanes, v);
+}
+
+// x0 y0 + x1 y1 + x2 y2, left to right (glm::dot on vec3).
+inline f8 dot3(f8 x0, f8 x1, f8 x2, f8 y0, f8 y1, f8 y2) {
+    return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(x0, y0), _mm256_mul_ps(x1, y1)),
+                         _mm256_mul_ps(x2, y2));
+}
+
+}  // namespace
+
+namespace {
+
+// x, y, z from memory, w = 0; reads exactly 3 floats.
+inline __m128 load3(const float* p) {
+    const __m128 xy = _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(p)));
+    return _mm_movelh_ps(xy, _mm_load_ss(p + 2));
+}
+inline float lane0(__m128 v) {
+    return _mm_cvtss_f32(v);
+}
+template <int i>
+inline float lane(__m128 v) {
+    return _mm_cvtss_f32(_mm_shuffle_ps(v, v, _MM_SHUFFLE(i, i, i, i)));
+}
+inline float sqrt1(float x) {
+    return _mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x)));
+}
+
+// One point's relevance radius, x, y, z in the lanes of one vector: the neighbour moment's
+// sums xx, yy, zz in one accumulator and xy, yz, zx in another, each in the scalar order.
+// (Gathering 8 points' neighbours at a time was slower than this on a Zen 4: its AVX2 gathers
+// cost more than the loads they replace.)
+inline float relevance_radius4(const PointsView& points, const float* positions, const float* scale,
+                               const float* fallback_radius, uint32_t i) {
+    const float k = scale[i];
+    const uint32_t begin = points.neighbour_offsets[i], end = points.neighbour_offsets[i + 1];
+    const __m128 p = load3(positions + size_t(i) * 3);
+    if (k > 0.0f) {
+        __m128 square = _mm_setzero_ps(), cross = _mm_setzero_ps();
+        for (uint32_t n = begin; n < end; ++n) {
+            const __m128 d = _mm_sub_ps(load3(positions + size_t(points.neighbours[n]) * 3), p);
+            square = _mm_add_ps(square, _mm_mul_ps(d, d));  // dx dx, dy dy, dz dz
+            cross = _mm_add_ps(cross, _mm_mul_ps(d, _mm_shuffle_ps(d, d, _MM_SHUFFLE(3, 0, 2, 1))));
+        }
+        const float xx = lane0(square), yy = lane<1>(square), zz = lane<2>(square);
+        const float xy = lane0(cross), yz = lane<1>(cross), xz = lane<2>(cross);
+        const float i2 = (xx * yy - xy * xy) + (xx * zz - xz * xz) + (yy * zz - yz * yz);
+        return k * sqrt1(sqrt1(i2 < 0.0f ? 0.0f : i2));  // std::max(i2, 0)
+    }
+    if (k < 0.0f) {
+        if (begin == end) return -k * 0.0f;
+        float sum = 0.0f;
+        for (uint32_t n = begin; n < end; ++n) {
+            const __m128 d = _mm_sub_ps(load3(positions + size_t(points.neighbours[n]) * 3), p);
+            const __m128 dd = _mm_mul_ps(d, d);
+            sum += sqrt1((lane0(dd) + lane<1>(dd)) + lane<2>(dd));
+        }
+        return -k * (sum / float(end - begin));
+    }
+    return fallback_radius[i];
+}
+
+}  // namespace
+
+namespace {
+
+// Writes x, y, z; exactly 3 floats.
+inline void store3(float* p, __m128 v) {
+    _mm_store_sd(reinterpret_cast<double*>(p), _mm_castps_pd(v));
+    _mm_store_ss(p + 2, _mm_movehl_ps(v, v));
+}
+
+// One point of place_point, x, y, z in the lanes of one vector (8 points per step with AVX2
+// gathers was slower than this on a Zen 4, whose gathers cost more than the loads they
+// replace).
+inline void place_point4(const PointsView& points, const uint32_t* indices, const float* positions,
+                         const float* normals, uint32_t i, float* out_positions,
+                         float* out_normals) {
+    const uint32_t* tri = indices + size_t(points.host_triangle[i]) * 3;
+    const float u = points.bary_u[i], v = points.bary_v[i], w = 1.0f - u - v;
+    const __m128 uu = _mm_set1_ps(u), vv = _mm_set1_ps(v), ww = _mm_set1_ps(w);
+    const size_t a = size_t(tri[0]) * 3, b = size_t(tri[1]) * 3, c = size_t(tri[2]) * 3;
+    const __m128 p = _mm_add_ps(
+        _mm_add_ps(_mm_mul_ps(uu, load3(positions + a)), _mm_mul_ps(vv, load3(positions + b))),
+        _mm_mul_ps(ww, load3(positions + c)));
+    const __m128 n = _mm_add_ps(
+        _mm_add_ps(_mm_mul_ps(uu, load3(normals + a)), _mm_mul_ps(vv, load3(normals + b))),
+        _mm_mul_ps(ww, load3(normals + c)));
+    const __m128 nn = _mm_mul_ps(n, n);
+    const float len2 = (lane0(nn) + lane<1>(nn)) + lane<2>(nn);
+    const float inv = len2 > 1e-20f ? 1.0f / sqrt1(len2) : 0.0f;
+    store3(out_positions + size_t(i) * 3, p);
+    store3(out_normals + size_t(i) * 3, _mm_mul_ps(n, _mm_set1_ps(inv)));
+}
+
+}  // namespace
+
+// point_placement.cpp's place_point (Thesis Alg. 6.3).
+void place_points_avx2(const PointsView& points, const uint32_t* indices, const float* positions,
+                       const float* normals, const uint32_t* list, uint32_t begin, uint32_t end,
+                       float* out_positions, float* out_normals) {
+    if (list) {
+        for (uint32_t j = begin; j < end; ++j)
+            place_point4(points, indices, positions, normals, list[j], out_positions, out_normals);
+        return;
+    }
+    for (uint32_t i = begin; i < end; ++i)
+        place_point4(points, indices, positions, normals, i, out_positions, out_normals);
+}
+
+// point_placement.cpp's relevance_radius (Thesis Alg. 6.4): the neighbour moment's I2^(1/4)
+// (scale > 0), the mean neighbour distance (scale < 0) or the fallback radius.
+void recompute_relevance_avx2(const PointsView& points, const float* point_positions,
+                              const float* scale, const float* fallback_radius,
+                              const uint32_t* list, uint32_t begin, uint32_t end,
+                              float* out_radius) {
+    if (list) {
+        for (uint32_t j = begin; j < end; ++j)
+            out_radius[list[j]] =
+                relevance_radius4(points, point_positions, scale, fallback_radius, list[j]);
+        return;
+    }
+    for (uint32_t i = begin; i < end; ++i)
+        out_radius[i] = relevance_radius4(points, point_positions, scale, fallback_radius, i);
+}
+
+namespace {
+
+// stipple_size.h's lighting(): ambient + sum of intensity max(N.L, 0), then lit < 1 ? lit : 1.
+inline f8 lighting8(const SizeParams& s, f8 nx, f8 ny, f8 nz) {
+    const f8 zero = _mm256_setzero_ps(), one = splat(1.0f);
+    f8 lit = splat(s.ambient);
+    for (int k = 0; k < s.light_count; ++k) {
+        const f8 d = dot3(nx, ny, nz, splat(s.light_direction[k].x), splat(s.light_direction[k].y),
+                          splat(s.light_direction[k].z));
+        const f8 m = select(_mm256_cmp_ps(d, zero, _CMP_LT_OQ), zero, d);  // glm::max(d, 0)
+        lit = _mm256_add_ps(lit, _mm256_mul_ps(splat(s.light_intensity[k]), m));
+    }
+    return select(_mm256_cmp_ps(lit, one, _CMP_LT_OQ), lit, one);
+}
+
+// InkTable::at.
+inline f8 ink_at(const InkTable& t, f8 x) {
+    const f8 zero = _mm256_setzero_ps(), one = splat(1.0f);
+    const f8 inner = select(_mm256_cmp_ps(x, one, _CMP_LT_OQ), x, one);
+    const f8 c = select(_mm256_cmp_ps(x, zero, _CMP_GT_OQ), inner, zero);
+    const f8 xs = _mm256_mul_ps(c, splat(float(InkTable::kSteps)));
+    const i8 i = _mm256_min_epi32(_mm256_cvttps_epi32(xs), _mm256_set1_epi32(InkTable::kSteps - 1));
+    const f8 lo = _mm256_i32gather_ps(t.ink, i, 4);
+    const f8 hi = _mm256_i32gather_ps(t.ink + 1, i, 4);
+    return _mm256_add_ps(
+        lo, _mm256_mul_ps(_mm256_sub_ps(hi, lo), _mm256_sub_ps(xs, _mm256_cvtepi32_ps(i))));
+}
+
+}  // namespace
+
+// stipple_size.cpp's stipple_size (Thesis §3.1.1, §3.1.2, Alg. 3.2), 8 points at a time.
+void size_stipples_avx2(const SizeKernelFrame& f, const float* positions, const float* normals,
+                        const float* radius, const uint32_t* list, uint32_t begin, uint32_t end,
+                        float* out_size) {
+    const SizeParams& s = *f.params;
+    const f8 zero = _mm256_setzero_ps(), one = splat(1.0f);
+    const float max_size = s.max_point_size;
+    const f8 dot_area = splat(0.785398163f * max_size * max_size);
+    const f8 slope = splat(s.smooth_slope - 1.0f);
+    for (uint32_t j = begin; j < end; j += 8) {
+        int lanes;
+        const i8 i = step_indices(list, j, end, &lanes);
+        const bool run = !list && lanes == 8;
+        const i8 i3 = times3(i);
+        f8 px, py, pz, nx, ny, nz;
+        xyz8(positions, run, j, i3, px, py, pz);
+        xyz8(normals, run, j, i3, nx, ny, nz);
+        const f8 tx = _mm256_sub_ps(splat(s.eye.x), px), ty = _mm256_sub_ps(splat(s.eye.y), py),
+                 tz = _mm256_sub_ps(splat(s.eye.z), pz);
+        const f8 n_dot_v = _mm256_div_ps(dot3(nx, ny, nz, tx, ty, tz),
+                                         _mm256_sqrt_ps(dot3(tx, ty, tz, tx, ty, tz)));
+        // glm::dot(vec4): (x + y) + (z + w), with w's product row_w[3] * 1.
+        const f8 w =
+            _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(splat(f.row_w[0]), px),
+                                        _mm256_mul_ps(splat(f.row_w[1]), py)),
+                          _mm256_add_ps(_mm256_mul_ps(splat(f.row_w[2]), pz), splat(f.row_w[3])));
+        const f8 hidden = _mm256_or_ps(_mm256_cmp_ps(n_dot_v, zero, _CMP_LE_OQ),
+                                       _mm256_cmp_ps(w, zero, _CMP_LE_OQ));
+        const f8 r_px = _mm256_div_ps(_mm256_mul_ps(one8(radius, run, j, i), splat(f.focal)), w);
+        const f8 region = _mm256_mul_ps(_mm256_mul_ps(r_px, r_px), n_dot_v);
+        const f8 ink = ink_at(f.table, lighting8(s, nx, ny, nz));
+        // smooth_point_size
+        const f8 ratio = _mm256_div_ps(ink, _mm256_div_ps(dot_area, region));
+        f8 t = _mm256_div_ps(_mm256_sub_ps(ratio, one), slope);
+        t = select(_mm256_cmp_ps(t, zero, _CMP_LT_OQ), zero,
+                   select(_mm256_cmp_ps(t, one, _CMP_GT_OQ), one, t));
+        const f8 size = select(hidden, zero, _mm256_mul_ps(t, splat(max_size)));
+        put8(out_size, run, j, i, lanes, size);
+    }
+}
+
+}  // namespace stipple
+
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
+#pragma GCC pop_options
+#endif
+
+#endif

@@ -1,0 +1,57 @@
+// Threads over point ranges allocate nothing per frame (runtime/thread_pool.h): the workers
+// are started in pipeline_init, a frame only wakes them (mutex and condition variables), and
+// the point stages' ranges write into buffers taken at init.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "runtime/frame_pipeline.h"
+#include "tests/alloc/alloc_counter.h"
+#include "tests/common/fixtures.h"
+
+using stipple::test::g_allocations;
+using stipple::test::g_counting;
+
+namespace {
+
+TEST(ThreadAllocation, FramesOnThreeThreadsAllocateNothing) {
+    stipple::Asset asset;
+    std::string error;
+    ASSERT_TRUE(stipple::test::load_baked(
+        stipple::test::baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 60000"), &asset,
+        &error))
+        << error;
+    stipple::test::HeadlessGl gl;
+    ASSERT_TRUE(gl.open(&error)) << error;
+    stipple::FrameConfig config;
+    config.threads = 3;
+    auto pipeline = std::make_unique<stipple::Pipeline>();
+    const stipple::Status init = stipple::pipeline_init(pipeline.get(), asset, gl.gl(), config);
+    ASSERT_TRUE(init.ok()) << init.message;
+    ASSERT_EQ(pipeline->pool.threads, 3);
+    std::vector<uint8_t> rgba(640 * 480 * 4);
+    stipple::pipeline_frame(pipeline.get(), 0, 0.0f, nullptr);
+
+    g_allocations = 0;
+    g_counting = true;
+    uint32_t most_run = 0;
+    for (int f = 0; f < 200; ++f) {
+        stipple::FrameConfig view = pipeline->config;
+        view.zoom = 1.0f + 5.0f * float(f % 50) / 49.0f;  // full views to refining close-ups
+        view.lod = f % 20 != 19;                          // and the full stages now and then
+        ASSERT_TRUE(stipple::pipeline_set_view(pipeline.get(), view).ok());
+        stipple::pipeline_frame(pipeline.get(), 0, float(f) / 30.0f, nullptr);
+        stipple::renderer_read_color(&pipeline->renderer, rgba.data());
+        most_run = std::max(most_run, pipeline->clusters.stats.points_run);
+    }
+    g_counting = false;
+    EXPECT_EQ(g_allocations.load(), 0);
+    EXPECT_GT(most_run, 3u * 2048u);  // ranges big enough to be split over the threads
+    EXPECT_GT(pipeline->points_drawn, 100u);
+    stipple::pipeline_destroy(pipeline.get());
+}
+
+}  // namespace
