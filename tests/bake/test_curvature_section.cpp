@@ -22,34 +22,14 @@
 #include "runtime/crc32.h"
 #include "runtime/particle_transform.h"
 #include "runtime/stroke_anchor.h"
+#include "tests/common/bake_fixtures.h"
 
 namespace {
 
 using namespace stipple;
 
-// assets/torus.obj (major radius 1 around +Y, minor radius 0.4) as stipple-bake prepares it,
-// with a 4,000-point hierarchy.
-struct Torus {
-    bake::RawScene scene;
-    bake::PointHierarchy points;
-};
-
-const Torus& torus() {
-    static const Torus* t = [] {
-        auto* out = new Torus;
-        const bake::BakeError e =
-            bake::import_scene(std::string(STIPPLE_SOURCE_DIR) + "/assets/torus.obj", &out->scene);
-        EXPECT_TRUE(e.ok()) << e.message;
-        bake::orient_outward(&out->scene);
-        bake::assign_normals(bake::NormalConfig(), &out->scene);
-        bake::HierarchyConfig config;
-        config.point_count = 4000;
-        const bake::BakeError built =
-            bake::build_point_hierarchy(out->scene, config, &out->points, nullptr);
-        EXPECT_TRUE(built.ok()) << built.message;
-        return out;
-    }();
-    return *t;
+const stipple::test::Torus& torus() {
+    return stipple::test::prepared_torus(4000);
 }
 
 SurfaceFrame frame_at(const bake::RawScene& s, uint32_t triangle, float u, float v) {
@@ -71,7 +51,7 @@ float degrees_off_around_the_tube(const SurfaceFrame& f, float angle) {
 }
 
 TEST(PrincipalCurvature, OnTheTorusTheDirectionRunsAroundTheTube) {
-    const Torus& t = torus();
+    const stipple::test::Torus& t = torus();
     const bake::BakedCurvature baked = bake::bake_curvature(t.scene, t.points);
     ASSERT_EQ(baked.angle.size(), t.points.size());
     std::vector<float> off;
@@ -104,7 +84,7 @@ TEST(PrincipalCurvature, OnTheTorusTheDirectionRunsAroundTheTube) {
 // Unsmoothed, the estimate is within 6% on the torus's 24-gon tube; smoothing (the default two
 // rounds) averages tensors of neighbours turned by 15 degrees and shrinks them a little.
 TEST(PrincipalCurvature, CurvaturesOfTheTorusAreItsRadii) {
-    const Torus& t = torus();
+    const stipple::test::Torus& t = torus();
     bake::CurvatureConfig raw;
     raw.smoothing = 0;
     const bake::VertexCurvature v = bake::vertex_curvature(t.scene, raw);
@@ -126,16 +106,8 @@ TEST(PrincipalCurvature, CurvaturesOfTheTorusAreItsRadii) {
 // A two-triangle square and a four-point hierarchy, with and without CURV.
 std::vector<uint8_t> encoded(const bake::BakedCurvature& curvature) {
     bake::RawScene s;
-    s.positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
-    s.normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
-    s.indices = {0, 1, 2, 0, 2, 3};
     bake::PointHierarchy p;
-    p.host_triangle = {0, 1, 1, 0};
-    p.bary_u = {0.25f, 0.5f, 0.0f, 0.6f};
-    p.bary_v = {0.25f, 0.5f, 1.0f, 0.2f};
-    p.radius = {0.8f, 0.5f, 0.3f, 0.2f};
-    p.neighbour_offsets = {0, 1, 2, 3, 4};
-    p.neighbours = {1, 0, 0, 0};
+    test::tiny_square(&s, &p);
     return bake::encode_asset(s, p, bake::BakedStrokes(), bake::BakedLooks(), {}, curvature);
 }
 

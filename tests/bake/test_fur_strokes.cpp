@@ -20,33 +20,14 @@
 #include "runtime/asset_limits.h"
 #include "runtime/point_placement.h"
 #include "runtime/stroke_anchor.h"
+#include "tests/common/bake_fixtures.h"
 
 namespace {
 
 using namespace stipple;
 
-// assets/torus.obj prepared as stipple-bake does, with a 400-point hierarchy.
-struct Torus {
-    bake::RawScene scene;
-    bake::PointHierarchy points;
-};
-
-const Torus& torus() {
-    static const Torus* t = [] {
-        auto* out = new Torus;
-        const bake::BakeError e =
-            bake::import_scene(std::string(STIPPLE_SOURCE_DIR) + "/assets/torus.obj", &out->scene);
-        EXPECT_TRUE(e.ok()) << e.message;
-        bake::orient_outward(&out->scene);
-        bake::assign_normals(bake::NormalConfig(), &out->scene);
-        bake::HierarchyConfig config;
-        config.point_count = 400;
-        const bake::BakeError built =
-            bake::build_point_hierarchy(out->scene, config, &out->points, nullptr);
-        EXPECT_TRUE(built.ok()) << built.message;
-        return out;
-    }();
-    return *t;
+const stipple::test::Torus& torus() {
+    return stipple::test::prepared_torus(400);
 }
 
 SurfaceFrame runtime_frame(const Asset& a, uint32_t triangle, float u, float v) {
@@ -72,7 +53,7 @@ glm::vec3 point_position(const format::StrokePointRecord& p) {
 }
 
 TEST(FurStrokes, RootsSitOnTheirHierarchyPointsInTheRuntimeFrame) {
-    const Torus& t = torus();
+    const stipple::test::Torus& t = torus();
     bake::FurConfig config;
     config.count = 250;
     bake::BakedStrokes fur;
@@ -120,7 +101,7 @@ TEST(FurStrokes, RootsSitOnTheirHierarchyPointsInTheRuntimeFrame) {
 }
 
 TEST(FurStrokes, MoreHairsThanPointsGivesOnePerPoint) {
-    const Torus& t = torus();
+    const stipple::test::Torus& t = torus();
     bake::FurConfig config;
     config.count = 100000;
     bake::BakedStrokes fur;
@@ -133,7 +114,7 @@ TEST(FurStrokes, MoreHairsThanPointsGivesOnePerPoint) {
 }
 
 TEST(FurStrokes, HairsHangUnderGravityAndStandWithoutAComb) {
-    const Torus& t = torus();
+    const stipple::test::Torus& t = torus();
     bake::FurConfig config;
     config.count = 400;
     bake::BakedStrokes hang, straight;
@@ -161,7 +142,7 @@ TEST(FurStrokes, HairsHangUnderGravityAndStandWithoutAComb) {
 }
 
 TEST(FurStrokes, CurlTwistsTheBendAndColoursVaryDeterministically) {
-    const Torus& t = torus();
+    const stipple::test::Torus& t = torus();
     bake::FurConfig config;
     config.count = 50;
     config.comb[0] = 1.0f;
@@ -187,7 +168,7 @@ TEST(FurStrokes, CurlTwistsTheBendAndColoursVaryDeterministically) {
 }
 
 TEST(FurStrokes, BadConfigurationsAreRefused) {
-    const Torus& t = torus();
+    const stipple::test::Torus& t = torus();
     const float nan = std::nanf("");
     struct Case {
         float length, radius, comb_x, curl;

@@ -10,6 +10,7 @@
 #include "runtime/asset.h"
 #include "runtime/asset_format.h"
 #include "runtime/crc32.h"
+#include "tests/common/bake_fixtures.h"
 
 namespace {
 
@@ -17,16 +18,8 @@ using namespace stipple;
 
 std::vector<uint8_t> encoded(const std::vector<uint32_t>& parents) {
     bake::RawScene s;
-    s.positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
-    s.normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
-    s.indices = {0, 1, 2, 0, 2, 3};
     bake::PointHierarchy p;
-    p.host_triangle = {0, 1, 1, 0};
-    p.bary_u = {0.25f, 0.5f, 0.0f, 0.6f};
-    p.bary_v = {0.25f, 0.5f, 1.0f, 0.2f};
-    p.radius = {0.8f, 0.5f, 0.3f, 0.2f};
-    p.neighbour_offsets = {0, 1, 2, 3, 4};
-    p.neighbours = {1, 0, 0, 0};
+    test::tiny_square(&s, &p);
     return bake::encode_asset(s, p, bake::BakedStrokes(), bake::BakedLooks(), parents);
 }
 

@@ -20,6 +20,7 @@
 
 #include "runtime/particle_frame.h"
 #include "tests/common/fixtures.h"
+#include "tests/common/particle_view.h"
 #include "tools/image_write.h"
 
 namespace {
@@ -28,77 +29,6 @@ using namespace stipple;
 using namespace stipple::test;
 
 constexpr int kW = 320, kH = 240;
-
-// One particle style drawing one asset, headless.
-class CurvatureView {
-  public:
-    bool open(const std::string& asset_path, const ParticleStyle& style, std::string* error) {
-        if (!gl_.open(error) || !load_baked(asset_path, &asset_, error)) return false;
-        FrameConfig c;
-        c.width = kW;
-        c.height = kH;
-        c.depth_readback = true;
-        c.check_gl_errors = true;
-        particle_style_frame_config(style, &c);
-        Status st = pipeline_init(pipeline_.get(), asset_, gl_.gl(), c);
-        if (st.ok())
-            st =
-                particle_stage_init(stage_.get(), asset_, style, kW, kH, asset_.points.point_count);
-        if (st.ok()) st = particle_stage_init_gl(stage_.get(), gl_.gl());
-        if (!st.ok()) *error = st.message;
-        return st.ok();
-    }
-    ~CurvatureView() {
-        particle_stage_destroy(stage_.get());
-        pipeline_destroy(pipeline_.get());
-    }
-    std::vector<VisibleStroke> frame(int clip, float time) {
-        AnimationState state;
-        state.clip = clip;
-        state.time = time;
-        pipeline_particle_frame(pipeline_.get(), stage_.get(), state, nullptr);
-        rgba_.resize(size_t(kW) * kH * 4);
-        depth_.resize(size_t(kW) * kH);
-        scratch_.resize(size_t(kW) * kH * 4);
-        renderer_read_color(&pipeline_->renderer, rgba_.data());
-        renderer_read_depth(&pipeline_->renderer, scratch_.data(), depth_.data());
-        std::vector<VisibleStroke> v(stage_->stroke_count);
-        v.resize(particle_visible_strokes(*pipeline_, *stage_, depth_.data(), v.data(),
-                                          uint32_t(v.size())));
-        return v;
-    }
-    void set_yaw(float yaw) {
-        FrameConfig v = pipeline_->config;
-        v.yaw_degrees = yaw;
-        ASSERT_TRUE(pipeline_set_view(pipeline_.get(), v).ok());
-    }
-    const std::vector<uint8_t>& rgba() const { return rgba_; }
-    const Asset& asset() const { return asset_; }
-    void save(const char* name) const {  // STIPPLE_PARTICLE_PNG=DIR: to look at them
-        if (const char* dir = std::getenv("STIPPLE_PARTICLE_PNG")) {
-            std::string e;
-            image::write_png((std::string(dir) + "/" + name + ".png").c_str(), kW, kH, rgba_.data(),
-                             true, &e);
-        }
-    }
-
-  private:
-    HeadlessGl gl_;
-    Asset asset_;
-    std::unique_ptr<Pipeline> pipeline_ = std::make_unique<Pipeline>();
-    std::unique_ptr<ParticleStage> stage_ = std::make_unique<ParticleStage>();
-    std::vector<uint8_t> rgba_;
-    std::vector<float> depth_, scratch_;
-};
-
-size_t changed_pixels(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
-    size_t n = 0;
-    for (size_t i = 0; i + 3 < a.size(); i += 4)
-        n += std::abs(int(a[i]) - int(b[i])) + std::abs(int(a[i + 1]) - int(b[i + 1])) +
-                 std::abs(int(a[i + 2]) - int(b[i + 2])) >
-             24;
-    return n;
-}
 
 // Two strokes' directions as lines, 0 to 90 degrees apart.
 float line_degrees(float a, float b) {
@@ -137,9 +67,9 @@ struct Drawn {
 };
 
 Drawn draw(const std::string& asset, const ParticleStyle& style, const char* png) {
-    CurvatureView v;
+    ParticleView v;
     std::string error;
-    EXPECT_TRUE(v.open(asset, style, &error)) << error;
+    EXPECT_TRUE(v.open(asset, style, 1.0f, &error, 0)) << error;  // baked points only
     Drawn d;
     if (!error.empty()) return d;
     for (int f = 0; f < 6; ++f) v.frame(0, 0.5f);  // the fades settle
@@ -191,10 +121,10 @@ TEST(CurvatureFrames, NeighbouringStrokesAlign) {
 // The bunny turning at 2 degrees per frame: a stroke on the curvature field turns with the
 // surface, smoothly (as StrokeOrientationTurnsSmoothlyOnATurntable checks the random field).
 TEST(CurvatureFrames, StrokesTurnSmoothlyOnATurntable) {
-    CurvatureView v;
+    ParticleView v;
     std::string error;
     ASSERT_TRUE(v.open(baked_asset("assets/StanfordBunny/stanford-bunny.obj", "--curvature"),
-                       with_field("painterly-long", OrientationField::curvature), &error))
+                       with_field("painterly-long", OrientationField::curvature), 1.0f, &error, 0))
         << error;
     ASSERT_NE(v.asset().points.curvature_angle, nullptr);
     for (int f = 0; f < 6; ++f) v.frame(-1, 0.0f);
