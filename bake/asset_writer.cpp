@@ -252,12 +252,21 @@ std::vector<uint8_t> curvature_section(const BakedCurvature& c) {
     return b.v;
 }
 
+// OCCL: the triangle count, the deviation, then the indices (runtime/asset_format.h).
+std::vector<uint8_t> occluder_section(const BakedOccluder& o) {
+    Bytes b;
+    b.u32(uint32_t(o.indices.size() / 3));
+    b.put(&o.deviation, 1);
+    b.put(o.indices);
+    return b.v;
+}
+
 }  // namespace
 
 std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points,
                                   const BakedStrokes& strokes, const BakedLooks& looks,
                                   const std::vector<uint32_t>& particle_parents,
-                                  const BakedCurvature& curvature) {
+                                  const BakedCurvature& curvature, const BakedOccluder& occluder) {
     struct Section {
         uint32_t tag;
         std::vector<uint8_t> bytes;
@@ -284,6 +293,7 @@ std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& p
     if (!curvature.angle.empty() && curvature.angle.size() == points.size() &&
         curvature.confidence.size() == points.size())
         sections.push_back({format::kTagCurvature, curvature_section(curvature)});
+    if (!occluder.empty()) sections.push_back({format::kTagOccluder, occluder_section(occluder)});
 
     std::vector<format::SectionEntry> table(sections.size());
     uint64_t offset = sizeof(format::FileHeader) + table.size() * sizeof(format::SectionEntry);

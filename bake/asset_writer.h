@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "bake/bake_error.h"
+#include "bake/occluder.h"
 #include "bake/point_hierarchy.h"
 #include "bake/principal_curvature.h"
 #include "bake/raw_scene.h"
@@ -18,12 +19,14 @@ namespace stipple::bake {
 // asset without either is the same bytes as before those sections existed.
 // A PTRE section (the particle tree, docs/particles.md) only when `particle_parents` holds one
 // parent per point. A CURV section (principal curvature directions, bake/principal_curvature.h)
-// only when `curvature` holds one direction per point.
+// only when `curvature` holds one direction per point. An OCCL section (the depth pass's
+// occluder, bake/occluder.h) only when `occluder` holds triangles.
 std::vector<uint8_t> encode_asset(const RawScene& scene, const PointHierarchy& points,
                                   const BakedStrokes& strokes = BakedStrokes(),
                                   const BakedLooks& looks = BakedLooks(),
                                   const std::vector<uint32_t>& particle_parents = {},
-                                  const BakedCurvature& curvature = BakedCurvature());
+                                  const BakedCurvature& curvature = BakedCurvature(),
+                                  const BakedOccluder& occluder = BakedOccluder());
 
 // Writes to `path` through a uniquely named temporary file, fsync and a rename
 // (bake/atomic_file.h), so a failed bake never leaves a partial asset or a temp file behind.

@@ -10,6 +10,9 @@
 //            lines, dots): the draw side without the CPU stages.
 // "GPU culls": the frame and the replay again with every triangle handed to the GPU, which
 // culls the back faces (the mesh pass before runtime/renderer_front.cpp), for the A/B.
+// "occluder": the frame with the depth pass drawing the bake's simplified occluder (OCCL,
+// bake/occluder.h, 10% of the triangles; runtime/renderer_occluder.cpp) instead of the full
+// mesh; the other variants draw the full mesh (the assets carry the section; it is turned off).
 // Each round runs kFrames frames of each, replaying frame k of the clip in all of them.
 // Reports ms per frame (min and median over rounds), frame / floor, fps, process CPU time
 // and the stage times.
@@ -28,9 +31,9 @@
 #include <vector>
 
 #include "bake/asset_writer.h"
+#include "bake/occluder.h"
 #include "bake/point_hierarchy.h"
 #include "bake/scene_import.h"
-#include "bench/bench_asset.h"
 #include "platform/headless_context.h"
 #include "runtime/frame_pipeline.h"
 #include "runtime/gl_program.h"
@@ -60,6 +63,7 @@ struct Case {
     std::vector<double> bin_ms;  // per round: the floor's mesh pass inside glDrawElements
     std::vector<double> replay_all_ms, replay_all_cpu;  // replay, every triangle to the GPU
     std::vector<double> frame_all_ms;                   // frame, every triangle to the GPU
+    std::vector<double> occluder_ms;                    // frame, the occluder's depth pass
     std::vector<stipple::StageTimes> stages;            // per round, per frame
 };
 
@@ -71,7 +75,9 @@ bool bake_file(const std::string& path, uint32_t points, stipple::Asset* out) {
     stipple::bake::PointHierarchy hierarchy;
     if (!stipple::bake::build_point_hierarchy(scene, config, &hierarchy, nullptr).ok())
         return false;
-    const std::vector<uint8_t> bytes = stipple::bake::encode_asset(scene, hierarchy);
+    constexpr double kOccluderRatio = 0.1;
+    const std::vector<uint8_t> bytes = stipple::bake::encode_asset(
+        scene, hierarchy, {}, {}, {}, {}, stipple::bake::bake_occluder(scene, kOccluderRatio));
     return stipple::load_asset_memory(bytes.data(), bytes.size(), out).ok();
 }
 
@@ -120,6 +126,7 @@ bool make_case(Case* c, const GlApi& gl, const char* clip_name) {
     config.relevance_update = true;
     c->pipeline = std::make_unique<stipple::Pipeline>();
     if (!stipple::pipeline_init(c->pipeline.get(), c->asset, gl, config).ok()) return false;
+    c->pipeline->renderer.occluder_enabled = false;  // on only in run_occluder
     c->clip = std::max(0, stipple::find_clip(c->asset, clip_name));
     capture(c);
     return true;
@@ -318,6 +325,15 @@ void run_frames(Case* c, bool all_triangles) {
     c->stages.push_back(t);
 }
 
+void run_occluder(Case* c) {
+    c->pipeline->renderer.occluder_enabled = true;
+    const Clock::time_point start = Clock::now();
+    for (int k = 0; k < kFrames; ++k)
+        stipple::pipeline_frame(c->pipeline.get(), c->clip, float(k) / 30.0f, nullptr);
+    c->occluder_ms.push_back(ms_between(start, Clock::now()) / kFrames);
+    c->pipeline->renderer.occluder_enabled = false;
+}
+
 void run_floor(Case* c, const Bare& b) {
     const GlApi& gl = c->pipeline->renderer.gl;
     const double cpu = cpu_ms();
@@ -404,6 +420,17 @@ void report_stages(const Case& c) {
                 stage_median(c, &T::draw));
 }
 
+void report_occluder(const Case& c) {
+    std::printf("| %s | %u of %u | %.4g | %s | %s | %s | %.2f / %.2f | %.2f / %.2f | %.0f |\n",
+                c.name, c.asset.occluder_triangle_count, c.asset.mesh.triangle_count,
+                double(c.asset.occluder_deviation), min_median(c.frame_ms).c_str(),
+                min_median(c.occluder_ms).c_str(), min_median(c.floor_ms).c_str(),
+                minimum(c.occluder_ms) / minimum(c.frame_ms),
+                median(c.occluder_ms) / median(c.frame_ms),
+                minimum(c.occluder_ms) / minimum(c.floor_ms),
+                median(c.occluder_ms) / median(c.floor_ms), 1000.0 / median(c.occluder_ms));
+}
+
 void print_tables(const Case (&cases)[2], int rounds) {
     std::printf(
         "1280x720, %d rounds of %d frames each, ms per frame (min / median over rounds)\n\n",
@@ -426,6 +453,12 @@ void print_tables(const Case (&cases)[2], int rounds) {
         "| asset | sample | skin | place | relevance | refine | size | silhouette | "
         "draw |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (const Case& c : cases) report_stages(c);
+    std::printf("\nThe occluder's depth pass (ms per frame, min / median over rounds):\n\n");
+    std::printf(
+        "| asset | occluder triangles | deviation | frame | frame, occluder | floor | "
+        "occluder / frame (min, median) | occluder / floor (min, median) | fps, occluder |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    for (const Case& c : cases) report_occluder(c);
 }
 
 int rounds_from(int argc, char** argv) {
@@ -451,7 +484,8 @@ int main(int argc, char** argv) {
     Case cases[2];
     cases[0].name = "CesiumMan (walk)";
     cases[1].name = "horse (bend)";
-    if (!stipple::bench::bake_asset("CesiumMan/CesiumMan.glb", 100000, &cases[0].asset) ||
+    if (!bake_file(std::string(STIPPLE_SOURCE_DIR) + "/assets/CesiumMan/CesiumMan.glb", 100000,
+                   &cases[0].asset) ||
         !bake_bent_horse(&cases[1].asset) || !make_case(&cases[0], gl, "") ||
         !make_case(&cases[1], gl, "bend")) {
         std::fprintf(stderr, "bench_frame_floor: cannot bake or set up the assets\n");
@@ -464,12 +498,13 @@ int main(int argc, char** argv) {
             return 1;
         }
     for (int r = 0; r < rounds; ++r)
-        for (int i = 0; i < 2; ++i) {  // the order of the five turns every round
-            for (int v = 0; v < 5; ++v) {
-                const int which = (v + r) % 5;
+        for (int i = 0; i < 2; ++i) {  // the order of the six turns every round
+            for (int v = 0; v < 6; ++v) {
+                const int which = (v + r) % 6;
                 if (which <= 1) run_frames(&cases[i], which == 1);
                 if (which == 2) run_floor(&cases[i], bare[i]);
-                if (which >= 3) run_replay(&cases[i], which == 4);
+                if (which == 3 || which == 4) run_replay(&cases[i], which == 4);
+                if (which == 5) run_occluder(&cases[i]);
             }
         }
     print_tables(cases, rounds);

@@ -294,6 +294,8 @@ Status parse_version3_sections(const uint8_t* bytes, const format::SectionEntry*
         st = detail::parse_particles(reader(sec[kSectionParticles]), a);
     if (st.ok() && sec[kSectionCurvature])
         st = detail::parse_curvature(reader(sec[kSectionCurvature]), a);
+    if (st.ok() && sec[kSectionOccluder])
+        st = detail::parse_occluder(reader(sec[kSectionOccluder]), a);
     return st;
 }
 
@@ -341,7 +343,8 @@ Status parse(const uint8_t* bytes, size_t size, DecodeBudget* budget, Asset* a) 
     const uint32_t tags[kSectionCount] = {
         format::kTagMesh,    format::kTagSkin,  format::kTagClips,     format::kTagPointStream,
         format::kTagEdges,   format::kTagMorph, format::kTagBounds,    format::kTagSides,
-        format::kTagStrokes, format::kTagLooks, format::kTagParticles, format::kTagCurvature};
+        format::kTagStrokes, format::kTagLooks, format::kTagParticles, format::kTagCurvature,
+        format::kTagOccluder};
     const format::SectionEntry* sec[kSectionCount];
     for (int i = 0; i < kSectionCount; ++i) {
         // Version 2 had no BNDS, SIDE, STRK or LOOK (kSectionBounds and after); like any
@@ -465,9 +468,9 @@ int find_clip(const Asset& asset, const char* name) {
 }
 
 const char* section_name(int section) {
-    static const char* const kNames[kSectionCount] = {"MESH", "SKIN", "CLIP", "PNTQ",
-                                                      "EDGE", "MRPH", "BNDS", "SIDE",
-                                                      "STRK", "LOOK", "PTRE", "CURV"};
+    static const char* const kNames[kSectionCount] = {"MESH", "SKIN", "CLIP", "PNTQ", "EDGE",
+                                                      "MRPH", "BNDS", "SIDE", "STRK", "LOOK",
+                                                      "PTRE", "CURV", "OCCL"};
     return section >= 0 && section < kSectionCount ? kNames[section] : "?";
 }
 

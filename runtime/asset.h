@@ -122,6 +122,7 @@ enum : int {
     kSectionLooks,
     kSectionParticles,
     kSectionCurvature,
+    kSectionOccluder,
     kSectionCount
 };
 
@@ -143,6 +144,12 @@ struct Asset {
     // The particle tree (PTRE section, docs/particles.md): parent per point, each before its
     // child or format::kNoParticleParent; nullptr without PTRE (the runtime then builds it).
     const uint32_t* particle_parent = nullptr;
+    // The depth pass's simplified occluder (OCCL section, optional; runtime/asset_format.h):
+    // 3 indices per triangle into the mesh's vertices, and how far it may lie in front of the
+    // surface (object units). nullptr and 0 without OCCL.
+    const uint32_t* occluder_indices = nullptr;
+    uint32_t occluder_triangle_count = 0;
+    float occluder_deviation = 0.0f;
     uint16_t version = 0;
     size_t section_size[kSectionCount] = {};  // bytes per section, kSection* order (0: absent)
 

@@ -31,6 +31,7 @@ constexpr uint32_t kTagStrokes = fourcc('S', 'T', 'R', 'K');      // paintstroke
 constexpr uint32_t kTagParticles = fourcc('P', 'T', 'R', 'E');    // the particle tree (GI'01)
 constexpr uint32_t kTagLooks = fourcc('L', 'O', 'O', 'K');        // colours, parts, creases
 constexpr uint32_t kTagCurvature = fourcc('C', 'U', 'R', 'V');    // principal directions (GI'01)
+constexpr uint32_t kTagOccluder = fourcc('O', 'C', 'C', 'L');     // the depth pass's occluder
 constexpr uint32_t kNoFace = 0xFFFFFFFFu;                         // second face of a boundary edge
 
 struct FileHeader {  // 32 bytes at offset 0
@@ -173,6 +174,12 @@ constexpr uint32_t kNoParticleParent = 0xFFFFFFFFu;
 // steps of pi / 256; confidence: (|k1| - |k2|) / (|k1| + |k2| + floor) in steps of 1 / 255.
 constexpr float kCurvatureAngleStep = 3.14159265358979f / 256.0f;
 constexpr float kCurvatureConfidenceStep = 1.0f / 255.0f;
+
+// OCCL section (optional; version 3 files may carry it): the depth pass's simplified occluder
+// (bake/occluder.h, runtime/renderer_occluder.cpp), triangles over the MESH section's vertices.
+//   u32 triangle_count (1 .. the MESH triangle count), f32 deviation (finite, >= 0; object
+//   units: how far the occluder may lie in front of the surface), u32 index[3 * triangle_count]
+// Every index < the MESH vertex count.
 
 // Section checksums: crc32() of runtime/crc32.h.
 

@@ -64,5 +64,8 @@ Status parse_particles(Reader r, Asset* a);
 // CURV section (runtime/asset_curvature.cpp): principal curvature directions, one per point of
 // the hierarchy already in `a`.
 Status parse_curvature(Reader r, Asset* a);
+// OCCL section (runtime/asset_occluder.cpp): the depth pass's occluder, triangles over the mesh
+// already in `a`.
+Status parse_occluder(Reader r, Asset* a);
 
 }  // namespace stipple::detail

@@ -130,6 +130,11 @@ struct FrameConfig {
     // only on clusters in view and front-facing, cut where no dot can be drawn. The dots are
     // the same as without (docs/lod.md); false runs every point.
     bool lod = true;
+    // The asset's simplified occluder (OCCL section, stipple-bake --occluder; runtime/
+    // renderer_occluder.cpp): a depth-only mesh pass (paper the background's colour) draws it,
+    // pushed back along the view by its measured deviation, instead of the full mesh. No
+    // effect on an asset without the section.
+    bool occluder = true;
     float line_width = kFrameSettings.line_width.fallback;  // silhouette width in pixels
     bool depth_readback = false;  // keep the mesh depth for renderer_read_depth (dot lists)
     // Run-time refinement (runtime/point_refinement.h): extra points generated per frame where

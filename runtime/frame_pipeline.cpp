@@ -208,6 +208,7 @@ RendererConfig renderer_config(const Pipeline& p) {
     rc.indices = p.asset->mesh.indices;
     rc.triangle_count = p.asset->mesh.triangle_count;
     rc.triangle_double_sided = p.asset->sides.triangle_double_sided;
+    renderer_config_occluder(&rc, *p.asset, c);  // the OCCL occluder (renderer_occluder.cpp)
     std::memcpy(rc.background, c.background, sizeof(rc.background));
     std::memcpy(rc.paper, c.paper, sizeof(rc.paper));
     std::memcpy(rc.ink, c.ink, sizeof(rc.ink));

@@ -22,8 +22,14 @@ struct Joins {
     uint32_t born = 0, queued = 0;
 };
 
-// Unfolds p: its children join the active set and are asked about in the next round.
+// Unfolds p: its children join the active set and are asked about in the next round. Within
+// the list's capacity only: a node whose children would overflow it stays folded (asked again
+// next frame), so the list holds the coarse-to-fine rounds' first list_capacity particles.
 void unfold(ParticleSet* s, const ParticleTree& t, uint32_t p, Joins* j) {
+    const uint32_t children = t.child_begin[p + 1] - t.child_begin[p];
+    if (s->list_capacity < s->capacity &&
+        uint64_t(s->count) + j->born + children > s->list_capacity)
+        return;
     s->state[p] |= kParticleUnfolded;
     for (uint32_t k = t.child_begin[p]; k < t.child_begin[p + 1]; ++k) {
         const uint32_t c = t.children[k];
@@ -43,7 +49,7 @@ void unfold(ParticleSet* s, const ParticleTree& t, uint32_t p, Joins* j) {
 void ask_about(ParticleSet* s, const uint32_t* ids, uint32_t n, ParticleDecideFn decide,
                void* user) {
     if (n == 0) return;
-    uint8_t* answer = s->want.get() + s->capacity;  // the second half: answers in ids' order
+    uint8_t* answer = s->want.get() + s->capacity;  // past the ids: answers in ids' order
     std::fill(answer, answer + n, uint8_t(0));
     decide(ids, n, answer, user);
     for (uint32_t k = 0; k < n; ++k) s->want[ids[k]] = answer[k] != 0;
@@ -130,27 +136,31 @@ void merge_list(ParticleSet* s, uint32_t born) {
 
 }  // namespace
 
-Status particle_set_init(ParticleSet* set, const ParticleTree& tree, int fade_frames) {
+Status particle_set_init(ParticleSet* set, const ParticleTree& tree, int fade_frames,
+                         uint32_t list_capacity) {
     *set = ParticleSet();
     if (fade_frames < 1 || fade_frames > 255)
         return make_status(StatusCode::invalid_argument, "fade frames %d is outside [1, 255]",
                            fade_frames);
     const size_t n = tree.count;
+    const size_t m =
+        list_capacity == 0 ? n : std::min<size_t>(n, std::max(list_capacity, tree.root_count));
     set->state = make_buffer<uint8_t>(n);
-    set->want = make_buffer<uint8_t>(2 * n);
+    set->want = make_buffer<uint8_t>(n + m);
     set->alpha = make_buffer<float>(n);
-    set->list = make_buffer<uint32_t>(n);
-    set->next = make_buffer<uint32_t>(n);
-    set->ask = make_buffer<uint32_t>(n);
-    set->born = make_buffer<uint32_t>(n);
-    set->queue = make_buffer<uint32_t>(n);
+    set->list = make_buffer<uint32_t>(m);
+    set->next = make_buffer<uint32_t>(m);
+    set->ask = make_buffer<uint32_t>(m);
+    set->born = make_buffer<uint32_t>(m);
+    set->queue = make_buffer<uint32_t>(m);
     if (!set->state || !set->want || !set->alpha || !set->list || !set->next || !set->ask ||
         !set->born || !set->queue)
         return make_status(StatusCode::out_of_memory, "out of memory for %zu particles", n);
     std::fill(set->state.get(), set->state.get() + n, uint8_t(0));
-    std::fill(set->want.get(), set->want.get() + 2 * n, uint8_t(0));
+    std::fill(set->want.get(), set->want.get() + n + m, uint8_t(0));
     std::fill(set->alpha.get(), set->alpha.get() + n, 0.0f);
     set->capacity = tree.count;
+    set->list_capacity = uint32_t(m);
     set->fade_step = 1.0f / float(fade_frames);
     for (uint32_t r = 0; r < tree.root_count; ++r) {
         const uint32_t p = tree.roots[r];

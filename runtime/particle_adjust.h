@@ -30,7 +30,10 @@ enum : uint8_t {
 using ParticleDecideFn = void (*)(const uint32_t* ids, uint32_t count, uint8_t* unfold, void* user);
 
 struct ParticleSet {
-    uint32_t capacity = 0;    // the tree's particle count
+    uint32_t capacity = 0;  // the tree's particle count
+    // The most particles listed at once (the per-frame budget): the list and stage 1's scratch
+    // are this long, and a node whose children would overflow it stays folded this frame.
+    uint32_t list_capacity = 0;
     float fade_step = 0.25f;  // opacity gained or lost per frame (1 / fade frames)
     Buffer<uint8_t> state;    // kParticle* bits, per particle
     Buffer<uint8_t> want;     // last decision, per particle
@@ -48,8 +51,10 @@ struct ParticleSet {
 
 // Takes the set's memory for `tree` and activates its roots. The first adjust shows what it
 // unfolds at full opacity (there is nothing to fade from); later ones fade. fade_frames in [1,
-// 255]: frames a fade takes.
-[[nodiscard]] Status particle_set_init(ParticleSet* set, const ParticleTree& tree, int fade_frames);
+// 255]: frames a fade takes. list_capacity: the most particles listed at once (0: the whole
+// tree; at least the roots are listed).
+[[nodiscard]] Status particle_set_init(ParticleSet* set, const ParticleTree& tree, int fade_frames,
+                                       uint32_t list_capacity = 0);
 
 // One frame of stage 1: asks `decide` about the active set, folds and unfolds, advances the
 // fades. Afterwards set->list[0 .. count) are the particles to draw, each at alpha[id].

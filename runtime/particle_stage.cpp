@@ -82,7 +82,7 @@ Status tree_parents(ParticleStage* s, const Asset& asset) {
 }  // namespace
 
 Status particle_stage_init(ParticleStage* s, const Asset& asset, const ParticleStyle& style,
-                           int width, int height, uint32_t tree_points) {
+                           int width, int height, uint32_t tree_points, uint32_t list_points) {
     *s = ParticleStage();
     if (!style_valid(style))
         return make_status(StatusCode::invalid_argument,
@@ -96,16 +96,17 @@ Status particle_stage_init(ParticleStage* s, const Asset& asset, const ParticleS
     const uint32_t n = s->temporary.count;
     const uint32_t* parents = s->tree.parent;
     if (st.ok()) st = particle_tree_build(&s->tree, n, parents);
-    if (st.ok()) st = particle_set_init(&s->set, s->tree, style.fade_frames);
+    if (st.ok()) st = particle_set_init(&s->set, s->tree, style.fade_frames, list_points);
     if (!st.ok()) return st;
+    const uint32_t m = s->set.list_capacity;  // listed at most: samples and strokes
     s->bin_count = particle_bin_count(width, height, style);
     s->bins = make_buffer<uint16_t>(s->bin_count);
-    s->strokes = make_buffer<StrokeInstance>(n);
-    s->stroke_id = make_buffer<uint32_t>(n);
+    s->strokes = make_buffer<StrokeInstance>(m);
+    s->stroke_id = make_buffer<uint32_t>(m);
     s->facing_alpha = make_buffer<float>(n);
     s->last_frame = make_buffer<uint32_t>(n);
-    if (!particle_samples_init(&s->asked, std::min(n, kAskChunk)) ||
-        !particle_samples_init(&s->samples, n) || !s->bins || !s->strokes || !s->stroke_id ||
+    if (!particle_samples_init(&s->asked, std::min(m, kAskChunk)) ||
+        !particle_samples_init(&s->samples, m) || !s->bins || !s->strokes || !s->stroke_id ||
         !s->facing_alpha || !s->last_frame)
         return make_status(StatusCode::out_of_memory, "out of memory for %u particles", n);
     std::fill(s->last_frame.get(), s->last_frame.get() + n, 0u);  // "not drawn last frame"
@@ -146,7 +147,7 @@ void fade_back_faces(ParticleStage* s) {
 
 Status particle_stage_init_gl(ParticleStage* s, const GlApi& gl) {
     if (!s->enabled) return {};
-    return particle_renderer_init(&s->renderer, gl, s->set.capacity);
+    return particle_renderer_init(&s->renderer, gl, s->set.list_capacity);
 }
 
 void particle_stage_adjust(ParticleStage* s, const ParticleFrame& frame) {
@@ -171,12 +172,12 @@ void particle_stage_build_strokes(ParticleStage* s) {
     if (!s->enabled) return;
     if (s->style.strokes)
         s->stroke_count = s->style.strokes(s->style, s->samples, s->strokes.get(),
-                                           s->stroke_id.get(), s->set.capacity, s->style.user);
+                                           s->stroke_id.get(), s->set.list_capacity, s->style.user);
     else
         s->stroke_count =
             particle_style_strokes(s->style, s->samples, s->width, s->height, s->bins.get(),
-                                   s->strokes.get(), s->stroke_id.get(), s->set.capacity);
-    s->stroke_count = std::min(s->stroke_count, s->set.capacity);
+                                   s->strokes.get(), s->stroke_id.get(), s->set.list_capacity);
+    s->stroke_count = std::min(s->stroke_count, s->set.list_capacity);
     ParticleStageStats& t = s->stats;
     t.active = s->set.active_count;
     t.listed = s->set.count;

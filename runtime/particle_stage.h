@@ -61,9 +61,15 @@ struct ParticleStage {
 // in all (GI'01 §5; none when tree_points <= the asset's points), and takes every buffer for
 // `style` and an image of width x height. Fails with out_of_memory, or invalid_argument for a
 // style whose values are out of range.
+// list_points: the most particles listed (drawn, fades included) at once, the per-frame
+// budget that sizes stage 1's list, stage 3's samples and stage 4's strokes (0: the whole
+// tree, as before). The tree's other per-particle arrays cost about 50 bytes a particle, the
+// listed ones about 150 more: a large tree of temporary particles with a small list spends
+// its memory on ids, and the list on what the view shows (docs/particles.md).
 [[nodiscard]] Status particle_stage_init(ParticleStage* s, const Asset& asset,
                                          const ParticleStyle& style, int width, int height,
-                                         uint32_t tree_points = kDefaultParticleTreePoints);
+                                         uint32_t tree_points = kDefaultParticleTreePoints,
+                                         uint32_t list_points = 0);
 [[nodiscard]] Status particle_stage_init_gl(ParticleStage* s, const GlApi& gl);
 
 // Stages 1, 3 and the CPU half of 4 for this frame's posed mesh and camera: the three calls

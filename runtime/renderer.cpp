@@ -338,6 +338,7 @@ Status renderer_init(Renderer* r, const GlApi& gl, const RendererConfig& config)
         create_buffers(r);
         renderer_init_front(r);
         st = renderer_init_looks(r);
+        if (st.ok()) st = renderer_init_occluder(r);
     }
     if (st.ok()) {
         if (gl.desktop) {
@@ -388,7 +389,7 @@ void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const flo
     gl.BindVertexArray(r->mesh_vao);
     gl.BindBuffer(GL_ARRAY_BUFFER, r->mesh_vbo);
     gl.BufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(size_t(vertex_count) * 12), positions);
-    renderer_draw_triangles(r, view_projection);
+    if (!renderer_draw_occluder(r, view_projection)) renderer_draw_triangles(r, view_projection);
     if (depth_only) gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     check_pass(r, "depth");
 }
@@ -524,6 +525,7 @@ void renderer_destroy(Renderer* r) {
     if (!gl.DeleteBuffers) return;
     renderer_destroy_looks(r);
     renderer_destroy_front(r);
+    renderer_destroy_occluder(r);
     GLuint buffers[5] = {r->mesh_vbo, r->mesh_ibo, r->point_pos_vbo, r->point_size_vbo,
                          r->line_vbo};
     gl.DeleteBuffers(5, buffers);

@@ -54,6 +54,12 @@ struct RendererConfig {
     bool part_colours = false;  // vertex_colours carry the parts' colours (toon fills with them)
     bool dot_colours = false;   // a per-dot RGBA8 buffer (renderer_draw_dots' colours)
     uint32_t max_creases = 0;   // crease lines drawn with the silhouettes (line buffer capacity)
+    // The simplified occluder (runtime/renderer_occluder.cpp; the asset's OCCL section): the
+    // depth-only mesh pass draws these triangles, pushed `occluder_push` object units away
+    // from the eye, instead of the single-sided ones. 0 triangles: none.
+    const uint32_t* occluder_indices = nullptr;
+    uint32_t occluder_triangle_count = 0;
+    float occluder_push = 0.0f;
 };
 
 // The look of the next frames (set by pipeline_set_camera from the resolved FrameConfig).
@@ -111,6 +117,12 @@ struct Renderer {
     glm::mat4 front_vp = glm::mat4(0.0f);
     uint32_t front_count = kFrontNotBuilt;
     GLuint front_ibo = 0;
+    // The occluder's pass (runtime/renderer_occluder.cpp); occluder_enabled: used by the
+    // depth-only mesh passes (set at init when the config has one; tests turn it off).
+    GLuint occluder_program = 0, occluder_ibo = 0;
+    GLint occluder_vp = -1, occluder_bias = -1, occluder_paper = -1, occluder_eye = -1,
+          occluder_push = -1;
+    bool occluder_enabled = false;
 };
 
 // Creates the framebuffer, shaders and buffers. Fails with gl_error (incomplete framebuffer,
@@ -145,6 +157,20 @@ bool renderer_front_triangles(Renderer* r, const glm::mat4& view_projection, uin
 // renderer_init's and renderer_destroy's part for front_ibo.
 void renderer_init_front(Renderer* r);
 void renderer_destroy_front(Renderer* r);
+
+// The simplified occluder (runtime/renderer_occluder.cpp; issue 9 item 5). Sets rc's
+// occluder from the asset's OCCL section when c.occluder is on; push: the bake's measured
+// deviation times a margin (runtime/renderer_occluder.cpp).
+struct Asset;
+void renderer_config_occluder(RendererConfig* rc, const Asset& asset, const FrameConfig& c);
+// renderer_init's and renderer_destroy's part for it.
+[[nodiscard]] Status renderer_init_occluder(Renderer* r);
+void renderer_destroy_occluder(Renderer* r);
+// renderer_draw_mesh's part: when the occluder is enabled and the pass writes only depth
+// (paper the background's colour; the depth copy too), draws the occluder with back faces
+// culled and then the double-sided triangles with the current (mesh) program, and returns
+// true; else draws nothing and returns false.
+bool renderer_draw_occluder(Renderer* r, const glm::mat4& view_projection);
 
 // Binds the offscreen framebuffer (colour and depth; not the depth copy) and its viewport for a
 // pass that draws its own geometry over the mesh pass (paintstrokes, runtime/stroke_stage.h).

@@ -77,6 +77,8 @@ const char* kUsage =
     "                   (docs/particles.md; without it the runtime builds the tree at load)\n"
     "  --curvature      write the CURV section: each point's principal curvature direction,\n"
     "                   the orientation field of ink and two-tone strokes (docs/particles.md)\n"
+    "  --occluder R     write the OCCL section: the mesh decimated to R of its triangles, in\n"
+    "                   [0.001, 0.999], that the depth pass draws instead (docs/format.md)\n"
     "  --quiet          no warnings and no summary; the progress bar (on stderr, for bakes over\n"
     "                   a second) shows only when stderr is a terminal (default off)\n"
     "  -h, --help       this text\n";
@@ -97,6 +99,7 @@ struct Options {
     bool looks = false;
     bool particles = false;  // --particles: a PTRE section
     bool curvature = false;  // --curvature: a CURV section
+    double occluder = 0.0;   // --occluder R: an OCCL section (0: none)
     std::vector<std::string> transparent;
 };
 
@@ -172,6 +175,7 @@ void add_look_options(stipple::cli::Parser& p, Options* o) {
     p.flag("--looks", &o->looks)
         .flag("--particles", &o->particles)
         .flag("--curvature", &o->curvature)
+        .number("--occluder", 0.001, 0.999, &o->occluder)
         .custom("--transparent", [&p, o](const std::string& name, const std::string& v) {
             size_t at = 0;
             while (at <= v.size()) {
@@ -343,6 +347,10 @@ void print_summary(const Options& o, const stipple::bake::RawScene& scene,
         j["curvature_bytes"] = check.section_size[stipple::kSectionCurvature];
         j["curvature_confident"] = fixed(confident / n, 3);
     }
+    if (check.occluder_indices) {  // OCCL: triangles and the measured deviation
+        j["occluder_triangles"] = check.occluder_triangle_count;
+        j["occluder_deviation"] = check.occluder_deviation;
+    }
     j["seconds"] = fixed(seconds, 3);
     stipple::cli::print_json(j);
 }
@@ -442,7 +450,9 @@ int main(int argc, char** argv) {
     const std::vector<uint8_t> bytes =
         encode_asset(scene, points, strokes, looks,
                      o.particles ? particle_tree(scene, points) : std::vector<uint32_t>(),
-                     o.curvature ? bake_curvature(scene, points) : BakedCurvature());
+                     o.curvature ? bake_curvature(scene, points) : BakedCurvature(),
+                     o.occluder > 0.0 ? stipple::bake::bake_occluder(scene, o.occluder)
+                                      : stipple::bake::BakedOccluder());
     on_progress("verify", 0, &progress);
     // Read the asset back with the runtime's validating loader before writing it, so a
     // bake never leaves an asset the runtime would refuse.

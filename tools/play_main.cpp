@@ -72,6 +72,7 @@ stipple::FrameConfig pipeline_config(const Options& o, const Clips& clips) {
     pc.frame_blend_clip = clips.second;
     pc.relevance_update = o.relevance_update;
     pc.lod = o.lod;
+    pc.occluder = o.occluder;
     pc.threads = o.threads;
     pc.dark_tone = float(o.dark_tone);
     pc.refinement_budget = uint32_t(o.refinement_budget);

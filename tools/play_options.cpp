@@ -140,6 +140,7 @@ void add_render_options(stipple::cli::Parser& p, Options& o) {
                 })
         .flag("--no-relevance-update", &o.relevance_update, false)
         .flag("--no-lod", &o.lod, false)
+        .flag("--no-occluder", &o.occluder, false)
         .integer("--threads", kLimits.threads.min, kLimits.threads.max, &o.threads)
         .number("--dark-tone", kLimits.dark_tone.min, kLimits.dark_tone.max, &o.dark_tone)
         .integer("--refinement-budget", kLimits.refinement_budget.min,

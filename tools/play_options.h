@@ -36,6 +36,7 @@ struct Options {
     bool silhouettes = kDefaults.silhouettes;
     bool relevance_update = kDefaults.relevance_update;
     bool lod = kDefaults.lod;
+    bool occluder = kDefaults.occluder;
     int threads = kDefaults.threads;  // --threads: the point stages' threads (0: hardware's)
     bool dots_out = false, png = true, apng = true, stats = false;
     bool mask_out = false;

@@ -199,7 +199,9 @@ std::string look_usage() {
            "  --tone-contrast C       then 0.5 + (T - 0.5) C (default 1, " +
            range(kLimits.tone_contrast) +
            ")\n"
-           "  --no-creases            do not draw the asset's crease lines (LOOK, thesis §8.2)\n";
+           "  --no-creases            do not draw the asset's crease lines (LOOK, thesis §8.2)\n"
+           "  --no-occluder           depth pass over the full mesh, not the asset's occluder\n"
+           "                          (OCCL, stipple-bake --occluder)\n";
 }
 
 }  // namespace

@@ -21,32 +21,37 @@ class ParticleView {
     static constexpr int kWidth = 320, kHeight = 240;
 
     // tree_points: the particle tree's size (particle_stage_init; the asset's point count
-    // leaves out the temporary particles).
+    // leaves out the temporary particles); list_points: the most listed at once (0: all).
     bool open(const std::string& asset_path, const ParticleStyle& style, float zoom,
-              std::string* error, uint32_t tree_points = kDefaultParticleTreePoints) {
+              std::string* error, uint32_t tree_points = kDefaultParticleTreePoints,
+              uint32_t list_points = 0, int width = kWidth, int height = kHeight) {
         if (!gl_.open(error) || !load_baked(asset_path, &asset_, error)) return false;
+        width_ = width;
+        height_ = height;
         FrameConfig c;
-        c.width = kWidth;
-        c.height = kHeight;
+        c.width = width;
+        c.height = height;
         c.zoom = zoom;
         c.depth_readback = true;
         c.check_gl_errors = true;
         particle_style_frame_config(style, &c);
         Status st = pipeline_init(pipeline_.get(), asset_, gl_.gl(), c);
         if (st.ok())
-            st = particle_stage_init(stage_.get(), asset_, style, kWidth, kHeight, tree_points);
+            st = particle_stage_init(stage_.get(), asset_, style, width, height, tree_points,
+                                     list_points);
         if (st.ok()) st = particle_stage_init_gl(stage_.get(), gl_.gl());
         if (!st.ok()) *error = st.message;
         return st.ok();
     }
     bool open(const std::string& asset_path, const char* style_name, float zoom, std::string* error,
-              uint32_t tree_points = kDefaultParticleTreePoints) {
+              uint32_t tree_points = kDefaultParticleTreePoints, uint32_t list_points = 0,
+              int width = kWidth, int height = kHeight) {
         const ParticleStyle* style = find_particle_style(style_name);
         if (!style) {
             *error = std::string("no style ") + style_name;
             return false;
         }
-        return open(asset_path, *style, zoom, error, tree_points);
+        return open(asset_path, *style, zoom, error, tree_points, list_points, width, height);
     }
     ~ParticleView() {
         particle_stage_destroy(stage_.get());
@@ -58,9 +63,9 @@ class ParticleView {
         state.clip = clip;
         state.time = time;
         pipeline_particle_frame(pipeline_.get(), stage_.get(), state, nullptr);
-        rgba_.resize(size_t(kWidth) * kHeight * 4);
-        depth_.resize(size_t(kWidth) * kHeight);
-        scratch_.resize(size_t(kWidth) * kHeight * 4);
+        rgba_.resize(size_t(width_) * height_ * 4);
+        depth_.resize(size_t(width_) * height_);
+        scratch_.resize(size_t(width_) * height_ * 4);
         renderer_read_color(&pipeline_->renderer, rgba_.data());
         renderer_read_depth(&pipeline_->renderer, scratch_.data(), depth_.data());
         std::vector<VisibleStroke> v(stage_->stroke_count);
@@ -89,13 +94,14 @@ class ParticleView {
     void save(const char* name) const {  // STIPPLE_PARTICLE_PNG=DIR: to look at them
         if (const char* dir = std::getenv("STIPPLE_PARTICLE_PNG")) {
             std::string e;
-            image::write_png((std::string(dir) + "/" + name + ".png").c_str(), kWidth, kHeight,
+            image::write_png((std::string(dir) + "/" + name + ".png").c_str(), width_, height_,
                              rgba_.data(), true, &e);
         }
     }
 
   private:
     HeadlessGl gl_;
+    int width_ = kWidth, height_ = kHeight;
     Asset asset_;
     std::unique_ptr<Pipeline> pipeline_ = std::make_unique<Pipeline>();
     std::unique_ptr<ParticleStage> stage_ = std::make_unique<ParticleStage>();

@@ -72,25 +72,33 @@ double density(const std::vector<VisibleStroke>& strokes, size_t object_pixels) 
 // Strokes per 1,000 object pixels at zoom 1, 2, 4, 8 of one asset (a static pose), each
 // after six frames for the fades to settle. tree_points: the particle tree's size (temporary
 // particles past the bake, runtime/particle_temporary.h; 0: the bake alone).
-std::vector<double> densities_under_zoom(const std::string& asset, int clip, uint32_t tree_points) {
+// list_points: the most listed at once (0: the whole tree); width x height: the image.
+std::vector<double> densities_under_zoom(const std::string& asset, int clip, uint32_t tree_points,
+                                         uint32_t list_points = 0, int width = kW,
+                                         int height = kH) {
     ParticleView v;
     std::string error;
-    EXPECT_TRUE(v.open(asset, "painterly-long", 1.0f, &error, tree_points)) << error;
+    EXPECT_TRUE(
+        v.open(asset, "painterly-long", 1.0f, &error, tree_points, list_points, width, height))
+        << error;
     std::vector<double> d;
     for (float zoom : {1.0f, 2.0f, 4.0f, 8.0f}) {
         v.set_view(0.0f, zoom);
         std::vector<VisibleStroke> s;
         for (int f = 0; f < 6; ++f) s = v.frame(clip, 0.0f);
         d.push_back(density(s, v.object_pixels()));
-        std::printf("zoom %g: %zu strokes over %zu px: %.2f per 1000 px (%u active of %u)\n", zoom,
-                    s.size(), v.object_pixels(), d.back(), v.stage().stats.active,
-                    v.stage().set.capacity);
+        EXPECT_LE(v.stage().stats.listed, v.stage().set.list_capacity);
+        std::printf(
+            "zoom %g: %zu strokes over %zu px: %.2f per 1000 px (%u active, %u listed of "
+            "%u, tree %u)\n",
+            zoom, s.size(), v.object_pixels(), d.back(), v.stage().stats.active,
+            v.stage().stats.listed, v.stage().set.list_capacity, v.stage().set.capacity);
         if (const char* dir = std::getenv("STIPPLE_PARTICLE_PNG")) {  // to look at them
             const std::string name = std::string(dir) + "/zoom" + std::to_string(int(zoom)) + "_" +
                                      std::to_string(tree_points) + "_" +
                                      std::to_string(v.object_pixels()) + ".png";
             std::string e;
-            image::write_png(name.c_str(), kW, kH, v.rgba().data(), true, &e);
+            image::write_png(name.c_str(), width, height, v.rgba().data(), true, &e);
         }
     }
     return d;
@@ -119,6 +127,25 @@ TEST(ParticleFrames, StrokeDensityHoldsUnderZoomOnDefaultBakesWithTemporaryParti
                                       "CesiumMan");
     const std::vector<double> bare = densities_under_zoom(bunny, -1, 0);
     EXPECT_LT(bare[3], 0.6 * bare[0]) << "the bake alone should run out at zoom 8";
+}
+
+// At the player's 640x480 the bunny needs a tree of 4^10 particles for zoom 8 (the default
+// 4^9 holds it to zoom 4), but the view lists a fraction of them: with the per-frame list
+// bounded at 65,536 (particle_stage_init's list_points) both default bakes hold the density
+// from zoom 1 to 8, and the listed buffers (about 150 bytes a particle) are sized by the
+// list, not the tree (docs/particles.md).
+TEST(ParticleFrames, StrokeDensityHoldsAt640x480WithABoundedList) {
+    const std::string bunny = baked_asset("assets/StanfordBunny/stanford-bunny.obj", "");
+    const std::string man = baked_asset("assets/CesiumMan/CesiumMan.glb", "");
+    constexpr uint32_t kTree = 1u << 20, kList = 65536;
+    expect_within_a_fifth_of_the_mean(densities_under_zoom(bunny, -1, kTree, kList, 640, 480),
+                                      "bunny, 640x480");
+    expect_within_a_fifth_of_the_mean(densities_under_zoom(man, 0, kTree, kList, 640, 480),
+                                      "CesiumMan, 640x480");
+    // A list too short for the view: nodes stay folded rather than overflow it, so the list
+    // holds its bound and zoom 8 runs out as a small tree does.
+    const std::vector<double> short_list = densities_under_zoom(bunny, -1, kTree, 8192, 640, 480);
+    EXPECT_LT(short_list[3], 0.6 * short_list[0]) << "8,192 listed should run out at zoom 8";
 }
 
 // Strokes of frame b that frame a had too, by particle id.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,35 @@ TEST_F(TemporaryParticlesTest, JoinTheTreeOneLevelBelowTheirParents) {
     EXPECT_GT(baked_parents, 0u);
     EXPECT_LT(baked_parents, temporary);
     particle_stage_destroy(&s);
+}
+
+// particle_stage_init's list_points bounds what a frame lists: stage 1's list, stage 3's
+// samples and stage 4's strokes are sized by it, the tree's per-particle arrays by the tree.
+TEST_F(TemporaryParticlesTest, AListBudgetSizesTheListedBuffersOnly) {
+    const ParticleStyle* style = find_particle_style("painterly-long");
+    ASSERT_NE(style, nullptr);
+    auto bytes = [&](uint32_t tree, uint32_t list) {
+        CountingArena arena;
+        AllocatorScope scope(counting_allocator(&arena));
+        ParticleStage s;
+        EXPECT_TRUE(particle_stage_init(&s, asset_, *style, 640, 480, tree, list).ok());
+        EXPECT_EQ(s.set.capacity, tree);
+        EXPECT_EQ(s.set.list_capacity, list == 0 ? tree : list);
+        particle_stage_destroy(&s);
+        return arena.bytes;
+    };
+    const size_t whole = bytes(65536, 0), bounded = bytes(65536, 8192);
+    const size_t big_tree = bytes(262144, 8192);
+    const double per_unlisted = double(whole - bounded) / double(65536 - 8192);
+    const double per_id = double(big_tree - bounded) / double(262144 - 65536);
+    std::printf(
+        "65,536 particles: %zu bytes listed whole, %zu with 8,192 listed (%.1f bytes per "
+        "particle not listed); 262,144 with 8,192 listed: %zu (%.1f bytes per particle)\n",
+        whole, bounded, per_unlisted, big_tree, per_id);
+    // Samples 41, strokes and their ids 44, the list and stage 1's scratch 20, an answer 1.
+    EXPECT_GT(per_unlisted, 100.0);
+    // The tree, its state and its init-time scratch (116.5 when measured).
+    EXPECT_LT(per_id, 130.0);
 }
 
 }  // namespace
