@@ -70,12 +70,12 @@ inline float first(f4 v) {
 }
 // x, y, z from memory, w = 0; reads exactly 3 floats.
 inline f4 load3(const float* p) {
-    const __m128 xy = _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(p)));
+    const __m128 xy = _mm_castsi128_ps(_mm_loadu_si64(p));
     return _mm_movelh_ps(xy, _mm_load_ss(p + 2));
 }
 // Writes x, y, z; exactly 3 floats.
 inline void store3(float* p, f4 v) {
-    _mm_store_sd(reinterpret_cast<double*>(p), _mm_castps_pd(v));
+    _mm_storeu_si64(p, _mm_castps_si128(v));
     _mm_store_ss(p + 2, _mm_movehl_ps(v, v));
 }
 inline void transpose(f4& a, f4& b, f4& c, f4& d) {

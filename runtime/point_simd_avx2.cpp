@@ -108,9 +108,10 @@ inline f8 dot3(f8 x0, f8 x1, f8 x2, f8 y0, f8 y1, f8 y2) {
 
 namespace {
 
-// x, y, z from memory, w = 0; reads exactly 3 floats.
+// x, y, z from memory, w = 0; reads exactly 3 floats. x, y as one unaligned 8-byte load
+// (_mm_loadu_si64: floats are only 4-byte aligned, and _mm_load_sd wants 8).
 inline __m128 load3(const float* p) {
-    const __m128 xy = _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(p)));
+    const __m128 xy = _mm_castsi128_ps(_mm_loadu_si64(p));
     return _mm_movelh_ps(xy, _mm_load_ss(p + 2));
 }
 inline float lane0(__m128 v) {
@@ -164,7 +165,7 @@ namespace {
 
 // Writes x, y, z; exactly 3 floats.
 inline void store3(float* p, __m128 v) {
-    _mm_store_sd(reinterpret_cast<double*>(p), _mm_castps_pd(v));
+    _mm_storeu_si64(p, _mm_castps_si128(v));  // x, y: unaligned, as in load3
     _mm_store_ss(p + 2, _mm_movehl_ps(v, v));
 }
 
