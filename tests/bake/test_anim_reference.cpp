@@ -38,6 +38,7 @@
 #include "bake/scene_import.h"
 #include "runtime/asset.h"
 #include "tests/common/bake_result.h"
+#include "tests/common/temp_file.h"
 
 namespace {
 
@@ -604,11 +605,12 @@ struct GltfBuilder {
     }
     std::string write(const std::string& name) {
         const std::string dir = ::testing::TempDir();
-        const std::string bin_name = "stipple_" + name + ".bin";
+        const std::string bin_name = "stipple_" + std::to_string(::getpid()) + "_" + name + ".bin";
         doc["buffers"] = {{{"uri", bin_name}, {"byteLength", bin.size()}}};
         std::ofstream(dir + bin_name, std::ios::binary)
             .write(reinterpret_cast<const char*>(bin.data()), std::streamsize(bin.size()));
-        const std::string path = dir + "stipple_" + name + ".gltf";
+        const std::string path =
+            dir + "stipple_" + std::to_string(::getpid()) + "_" + name + ".gltf";
         std::ofstream(path) << doc.dump(1);
         return path;
     }

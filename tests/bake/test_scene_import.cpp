@@ -15,6 +15,7 @@
 #include "bake/scene_import.h"
 #include "tests/common/bake_result.h"
 #include "tests/common/gltf_writer.h"
+#include "tests/common/temp_file.h"
 
 namespace stipple::bake {
 namespace {
@@ -22,7 +23,7 @@ namespace {
 const char* const kCesiumMan = STIPPLE_SOURCE_DIR "/assets/CesiumMan/CesiumMan.glb";
 
 std::string temp_path(const std::string& name) {
-    return ::testing::TempDir() + "stipple_" + name;
+    return stipple::test::temp_file(name);
 }
 
 std::string write_file(const std::string& name, const std::string& content) {

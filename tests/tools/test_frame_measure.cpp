@@ -9,6 +9,7 @@
 #include <random>
 
 #include "tests/common/fixtures.h"
+#include "tests/common/temp_file.h"
 #include "tools/frame_measure.h"
 #include "tools/image_write.h"
 
@@ -192,7 +193,7 @@ TEST(FrameMeasure, MaskFromPaperFrameAndMaskPng) {
             if (x == 0 && y == 29) p[0] = p[1] = p[2] = 252;           // 0.988: outside
             if (x == 1 && y == 29) p[0] = p[1] = p[2] = 253;           // 0.992: inside
         }
-    const std::string path = ::testing::TempDir() + "measure_paper.png";
+    const std::string path = stipple::test::temp_file("measure_paper.png");
     std::string error;
     ASSERT_TRUE(stipple::image::write_png(path.c_str(), w, h, rgba.data(), false, &error)) << error;
     m::Mask mask;
@@ -343,7 +344,7 @@ void write_text(const std::string& path, const std::string& text) {
 }
 
 TEST(FrameMeasure, LoadsDotsCsvWith64BitIds) {
-    const std::string path = ::testing::TempDir() + "measure_dots.csv";
+    const std::string path = stipple::test::temp_file("measure_dots.csv");
     write_text(path, "id,x,y,size\r\n3,1.50,2.25,3.000\r\n\r\n4294967301,10,20,0.5\n");
     std::vector<m::Dot> dots;
     std::string error;
