@@ -7,9 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/glm.hpp>
-#include <unordered_map>
 
 #include "bake/position_weld.h"
+#include "bake/scene_poser.h"
+#include "bake/triangle_grid.h"
 
 namespace stipple::bake {
 
@@ -21,122 +22,80 @@ bool single_sided(const RawScene& s, size_t t) {
     return s.double_sided.empty() || s.double_sided[t] == 0;
 }
 
-glm::vec3 position(const RawScene& s, uint32_t v) {
-    return glm::vec3(s.positions[size_t(v) * 3], s.positions[size_t(v) * 3 + 1],
-                     s.positions[size_t(v) * 3 + 2]);
+glm::vec3 position(const float* p, uint32_t v) {
+    return glm::vec3(p[size_t(v) * 3], p[size_t(v) * 3 + 1], p[size_t(v) * 3 + 2]);
 }
 
-// The point of triangle abc nearest to p (Ericson, Real-Time Collision Detection §5.1.5).
-glm::vec3 closest_on_triangle(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3 c) {
-    const glm::vec3 ab = b - a, ac = c - a, ap = p - a;
-    const float d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0) return a;
-    const glm::vec3 bp = p - b;
-    const float d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3) return b;
-    const float vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
-    const glm::vec3 cp = p - c;
-    const float d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6) return c;
-    const float vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
-    const float va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    const float denom = 1.0f / (va + vb + vc);
-    return a + ab * (vb * denom) + ac * (vc * denom);
-}
-
-// A uniform grid of the occluder's triangles (each in every cell its bounding box touches).
-struct TriangleGrid {
-    glm::vec3 origin{0.0f};
-    float cell = 1.0f;
-    std::unordered_map<uint64_t, std::vector<uint32_t>> cells;
-    static uint64_t key(glm::ivec3 c) {
-        return (uint64_t(uint32_t(c.x) & 0x1FFFFF) << 42) |
-               (uint64_t(uint32_t(c.y) & 0x1FFFFF) << 21) | uint64_t(uint32_t(c.z) & 0x1FFFFF);
-    }
-    glm::ivec3 at(glm::vec3 p) const { return glm::ivec3(glm::floor((p - origin) / cell)); }
-};
-
-TriangleGrid build_grid(const RawScene& s, const std::vector<uint32_t>& tris) {
-    TriangleGrid g;
-    double edge = 0.0;
+// +1 when the triangles' winding makes their normals point out of the volume they enclose,
+// -1 when it encloses a negative volume (faces pointing inwards, e.g. a Z-up PLY that no
+// importer flipped).
+float outward_sign(const float* pos, const std::vector<uint32_t>& tris) {
+    double volume = 0.0;
     for (size_t t = 0; t < tris.size() / 3; ++t)
-        edge += glm::length(position(s, tris[t * 3]) - position(s, tris[t * 3 + 1]));
-    g.cell = std::max(float(2.0 * edge / double(std::max<size_t>(tris.size() / 3, 1))), 1e-6f);
-    g.origin = position(s, tris.empty() ? 0 : tris[0]);
-    for (size_t t = 0; t < tris.size() / 3; ++t) {
-        const glm::vec3 a = position(s, tris[t * 3]), b = position(s, tris[t * 3 + 1]),
-                        c = position(s, tris[t * 3 + 2]);
-        const glm::ivec3 lo = g.at(glm::min(a, glm::min(b, c)));
-        const glm::ivec3 hi = g.at(glm::max(a, glm::max(b, c)));
-        for (int x = lo.x; x <= hi.x; ++x)
-            for (int y = lo.y; y <= hi.y; ++y)
-                for (int z = lo.z; z <= hi.z; ++z)
-                    g.cells[TriangleGrid::key({x, y, z})].push_back(uint32_t(t));
-    }
-    return g;
+        volume += double(
+            glm::dot(position(pos, tris[t * 3]),
+                     glm::cross(position(pos, tris[t * 3 + 1]), position(pos, tris[t * 3 + 2]))));
+    return volume < 0.0 ? -1.0f : 1.0f;
 }
 
-// How far p lies behind (inside) the occluder triangle nearest to it; 0 when in front.
-float behind(const RawScene& s, const std::vector<uint32_t>& tris, const TriangleGrid& g,
-             glm::vec3 p, float outward) {
-    const glm::ivec3 c = g.at(p);
-    float best = INFINITY, depth = 0.0f;
-    for (int ring = 0; ring <= 6; ++ring) {
-        for (int x = -ring; x <= ring; ++x)
-            for (int y = -ring; y <= ring; ++y)
-                for (int z = -ring; z <= ring; ++z) {
-                    if (std::max(std::abs(x), std::max(std::abs(y), std::abs(z))) != ring)
-                        continue;  // the shell of this ring only
-                    auto it = g.cells.find(TriangleGrid::key(c + glm::ivec3(x, y, z)));
-                    if (it == g.cells.end()) continue;
-                    for (uint32_t t : it->second) {
-                        const glm::vec3 a = position(s, tris[t * 3]),
-                                        b = position(s, tris[t * 3 + 1]),
-                                        d = position(s, tris[t * 3 + 2]);
-                        const glm::vec3 q = closest_on_triangle(p, a, b, d);
-                        const float dist = glm::length(p - q);
-                        if (dist >= best) continue;
-                        best = dist;
-                        const glm::vec3 n = glm::cross(b - a, d - a);
-                        depth = outward * glm::dot(p - q, n) < 0.0f ? dist : 0.0f;
-                    }
-                }
-        if (best <= float(ring) * g.cell) break;  // nothing nearer in the rings beyond
+// The single-sided triangles of the render mesh.
+std::vector<uint32_t> single_sided_triangles(const RawScene& s) {
+    std::vector<uint32_t> tris;
+    for (size_t t = 0; t < s.triangle_count(); ++t)
+        if (single_sided(s, t)) tris.insert(tris.end(), &s.indices[t * 3], &s.indices[t * 3 + 3]);
+    return tris;
+}
+
+// Both one-sided gaps in one pose: how far the surface (vertices, triangle centres) lies
+// behind the occluder, and how far the occluder (7 points per triangle) lies in front of the
+// surface. Either is a place where the occluder's depth would hide a dot on the surface.
+float pose_deviation(const float* pos, const std::vector<uint32_t>& surface,
+                     const std::vector<uint32_t>& vertices, const std::vector<uint32_t>& occluder,
+                     float outward) {
+    float deviation = 0.0f;
+    const TriangleGrid on_occluder = build_triangle_grid(pos, occluder);
+    for (uint32_t v : vertices)
+        deviation = std::max(deviation, one_sided_gap(on_occluder, position(pos, v), -outward));
+    for (size_t t = 0; t < surface.size() / 3; ++t) {
+        const glm::vec3 centre =
+            (position(pos, surface[t * 3]) + position(pos, surface[t * 3 + 1]) +
+             position(pos, surface[t * 3 + 2])) /
+            3.0f;
+        deviation = std::max(deviation, one_sided_gap(on_occluder, centre, -outward));
     }
-    return std::isfinite(best) ? depth : 0.0f;
+    const TriangleGrid on_surface = build_triangle_grid(pos, surface);
+    for (size_t t = 0; t < occluder.size() / 3; ++t) {
+        const glm::vec3 a = position(pos, occluder[t * 3]), b = position(pos, occluder[t * 3 + 1]),
+                        c = position(pos, occluder[t * 3 + 2]);
+        const glm::vec3 m = (a + b + c) / 3.0f;
+        for (const glm::vec3& p : {m, (a + b) * 0.5f, (b + c) * 0.5f, (c + a) * 0.5f,
+                                   (a + m) * 0.5f, (b + m) * 0.5f, (c + m) * 0.5f})
+            deviation = std::max(deviation, one_sided_gap(on_surface, p, outward));
+    }
+    return deviation;
 }
 
 }  // namespace
 
 float occluder_deviation(const RawScene& scene, const std::vector<uint32_t>& occluder) {
     if (occluder.empty()) return 0.0f;
-    const TriangleGrid grid = build_grid(scene, occluder);
-    // Outward is the side the winding's normals point to unless the mesh encloses a negative
-    // volume (faces pointing inwards, e.g. a Z-up PLY that no importer flipped).
-    double volume = 0.0;
-    for (size_t t = 0; t < occluder.size() / 3; ++t) {
-        const glm::vec3 a = position(scene, occluder[t * 3]),
-                        b = position(scene, occluder[t * 3 + 1]),
-                        c = position(scene, occluder[t * 3 + 2]);
-        volume += double(glm::dot(a, glm::cross(b, c)));
-    }
-    const float outward = volume < 0.0 ? -1.0f : 1.0f;
+    const std::vector<uint32_t> surface = single_sided_triangles(scene);
+    std::vector<uint32_t> vertices(surface);  // the surface's vertices, each once
+    std::sort(vertices.begin(), vertices.end());
+    vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+    const float outward = outward_sign(scene.positions.data(), occluder);
     float deviation = 0.0f;
-    for (size_t v = 0; v < scene.vertex_count(); ++v)
-        deviation = std::max(deviation,
-                             behind(scene, occluder, grid, position(scene, uint32_t(v)), outward));
-    for (size_t t = 0; t < scene.triangle_count(); ++t) {
-        if (!single_sided(scene, t)) continue;
-        const glm::vec3 centre =
-            (position(scene, scene.indices[t * 3]) + position(scene, scene.indices[t * 3 + 1]) +
-             position(scene, scene.indices[t * 3 + 2])) /
-            3.0f;
-        deviation = std::max(deviation, behind(scene, occluder, grid, centre, outward));
-    }
+    // Every clip's poses too: skinning bends the surface between the occluder's vertices
+    // (an arm against the body). 8 poses a second, at most 16 a clip, fewer on meshes past
+    // 100k triangles (each pose costs a query per vertex, triangle and occluder sample).
+    PoseSampling sampling;
+    sampling.samples_per_second = 8.0f;
+    sampling.max_samples_per_clip =
+        std::clamp<size_t>(size_t(1.6e6 / double(std::max<size_t>(surface.size() / 3, 1))), 2, 16);
+    for_each_pose(scene, sampling, [&](int, const float* positions) {
+        deviation =
+            std::max(deviation, pose_deviation(positions, surface, vertices, occluder, outward));
+    });
     return deviation;
 }
 
@@ -156,7 +115,7 @@ BakedOccluder bake_occluder(const RawScene& scene, double ratio) {
     mesh.request_face_status();
     mesh.request_face_normals();
     for (uint32_t c = 0; c < classes; ++c) {
-        const glm::vec3 p = position(scene, representative[c]);
+        const glm::vec3 p = position(scene.positions.data(), representative[c]);
         mesh.add_vertex(Mesh::Point(p.x, p.y, p.z));
     }
     std::vector<uint32_t> kept_as_is;  // triangles OpenMesh refuses (non-manifold): copied

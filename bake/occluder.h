@@ -13,9 +13,9 @@ namespace stipple::bake {
 
 struct BakedOccluder {
     std::vector<uint32_t> indices;  // 3 per triangle, render-mesh vertex indices
-    // The largest distance by which the occluder lies in front of (outside) the original
-    // surface, measured at every original vertex and triangle centre (object units): the
-    // depth pass pushes the occluder back by this much, so no surface point is hidden by it.
+    // The largest one-sided gap between the occluder and the original surface, in the rest
+    // pose and in sampled poses of every clip (object units): the depth pass pushes the
+    // occluder back by this much, so no surface point is hidden by it.
     float deviation = 0.0f;
     bool empty() const { return indices.empty(); }
 };
@@ -24,9 +24,11 @@ struct BakedOccluder {
 // number. Empty when the mesh has no single-sided triangles.
 BakedOccluder bake_occluder(const RawScene& scene, double ratio);
 
-// The one-sided deviation of bake_occluder: the largest distance of a point of the original
-// single-sided surface (vertices and triangle centres) behind the occluder triangle nearest to
-// it, against that triangle's outward normal. Exposed for tests.
+// The deviation of bake_occluder, the largest over the rest pose and the clips' poses
+// (bake/scene_poser.h) of two one-sided gaps (bake/triangle_grid.h): how far a point of the
+// original single-sided surface (vertices and triangle centres) lies behind the occluder, and
+// how far a point of the occluder (7 per triangle) lies in front of the surface, each against
+// the nearest triangle's outward normal. Exposed for tests.
 float occluder_deviation(const RawScene& scene, const std::vector<uint32_t>& occluder);
 
 }  // namespace stipple::bake

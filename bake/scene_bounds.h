@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "bake/raw_scene.h"
+#include "bake/scene_poser.h"
 
 namespace stipple::bake {
 
@@ -13,16 +14,10 @@ struct SceneBounds {
     std::vector<float> clips;  // 6 per clip
 };
 
-struct BoundsConfig {
-    float samples_per_second = 60.0f;  // uniform samples over [0, duration], plus every key time
-    size_t max_samples_per_clip = 20000;
-};
+using BoundsConfig = PoseSampling;  // bake/scene_poser.h
 
-// Poses the mesh with the runtime's own animation jobs (anim/: sampling, local-to-model,
-// morph targets, LBS skinning, as runtime/frame_pipeline.cpp does with the default skinning)
-// at every sample time of every clip and takes the box around all skinned vertices. Samples:
-// 0, duration and `samples_per_second` between, merged with every channel's key times (where a
-// LINEAR or STEP clip's extremes lie), thinned evenly if there are more than the cap.
+// Poses the mesh with the runtime's own animation jobs at every sample time of every clip
+// (bake/scene_poser.h) and takes the box around all skinned vertices.
 SceneBounds compute_scene_bounds(const RawScene& scene, const BoundsConfig& config = {});
 
 }  // namespace stipple::bake
