@@ -13,6 +13,7 @@
 #include "anim/finite.h"
 #include "bake/bake_random.h"
 #include "bake/base_mesh.h"
+#include "bake/particle_parents.h"
 #include "bake/point_hierarchy_collapse.h"
 #include "bake/radius_calibration.h"
 #include "bake/sample_elimination.h"
@@ -96,6 +97,7 @@ struct Builder {
     OpenMesh::FPropHandleT<uint32_t> host_face;  // input triangle each face lies in
     std::vector<PointRecord> points;             // indexed like mesh vertices
     std::vector<uint32_t> welded;                // input vertex -> position class
+    std::vector<uint32_t> merged_into;           // the merge record (bake/particle_parents.h)
     std::unique_ptr<InputSurface> surface;
     Rng rng;
     bool jitter_off = false;  // ch. 5 refines without randomizing
@@ -216,9 +218,8 @@ struct Builder {
         return mesh.add_vertex(p);
     }
 
-    // Connectivity graph (§4.1). Faces that would make the mesh non-manifold get their own
-    // copies of their vertices rather than being dropped, so every input triangle can host
-    // points.
+    // Connectivity graph (§4.1). Faces that would make the mesh non-manifold get copies of their
+    // own vertices rather than being dropped, so every input triangle can host points.
     void build_graph() {
         double diag = 0;
         {
@@ -304,6 +305,7 @@ struct Builder {
                 r.neighbours = one_ring(m, removed);
                 r.radius = mean_distance(uint32_t(removed.idx()), r.neighbours, m);
                 collapse_halfedge(m, h);  // OpenMesh's collapse without its O(valence) walk
+                record_merge(&merged_into, uint32_t(removed.idx()), uint32_t(kept.idx()));
                 --remaining;
                 for (Mesh::VertexEdgeIter it = m.ve_iter(kept); it.is_valid(); ++it)
                     heap.push({length(*it), it->idx()});
@@ -395,6 +397,7 @@ struct Builder {
                     ++stats.discarded_randomizations;
             }
         }
+        record_split(&merged_into, mesh, v, a, b);
         PointRecord& added = points.back();
         added.neighbours = one_ring(mesh, v);
         added.radius =
@@ -404,8 +407,7 @@ struct Builder {
     }
 
     // Ch. 5 needs at least one polygon per point: bisect (without randomization, so every
-    // refined face stays inside its input face) until there are `faces` faces; the result
-    // as plain arrays (bake/base_mesh.h).
+    // refined face stays inside its input face) to `faces` faces; as arrays (bake/base_mesh.h).
     BaseMesh base_mesh(size_t faces) {
         phase = "refine";
         while (mesh.n_faces() < faces) {
@@ -469,7 +471,8 @@ struct Builder {
 
 // Orders points coarse to fine (descending radius; ties by creation order, so the result
 // is deterministic), keeps the first `count`, and rewrites neighbour indices.
-void order_and_emit(const std::vector<PointRecord>& points, size_t count, PointHierarchy* out) {
+void order_and_emit(const std::vector<PointRecord>& points, const std::vector<uint32_t>& merged,
+                    size_t count, PointHierarchy* out) {
     std::vector<uint32_t> order(points.size());
     std::iota(order.begin(), order.end(), 0u);
     std::stable_sort(order.begin(), order.end(),
@@ -478,6 +481,7 @@ void order_and_emit(const std::vector<PointRecord>& points, size_t count, PointH
     std::vector<uint32_t> rank(points.size(), UINT32_MAX);
     for (uint32_t i = 0; i < order.size(); ++i) rank[order[i]] = i;
     *out = PointHierarchy();
+    out->record_parent = record_parents(merged, order, rank);
     out->neighbour_offsets.push_back(0);
     for (uint32_t id : order) {
         const PointRecord& r = points[id];
@@ -511,9 +515,8 @@ void truncate(size_t count, PointHierarchy* p) {
 // The input and the options, checked before any work.
 BakeError check_input(const RawScene& scene, const HierarchyConfig& config) {
     if (scene.triangle_count() == 0) return malformed_input("mesh has no triangles");
-    if (config.point_count == 0) {
+    if (config.point_count == 0)
         return bake_error(BakeErrorCode::invalid_option, "point count must be positive");
-    }
     if (!all_finite(scene.positions))
         return malformed_input("mesh has a vertex position that is not finite");
     for (uint32_t i : scene.indices)
@@ -556,7 +559,7 @@ void build_by_simplification(Builder& b, const HierarchyConfig& config, PointHie
     b.stats.simplified_points = uint32_t(input_points);
     b.stats.subdivided_points = uint32_t(b.points.size() - input_points);
     b.report("order", 0);
-    order_and_emit(b.points, config.point_count, out);
+    order_and_emit(b.points, b.merged_into, config.point_count, out);
     calibrate_radii(b.surface->area(), out);
     b.report("order", 1);
     if (stats) *stats = b.stats;
@@ -567,18 +570,16 @@ BakeError build(const RawScene& scene, const HierarchyConfig& config, PointHiera
     const BakeError checked = check_input(scene, config);
     if (!checked.ok()) return checked;
     // Sample elimination needs no connectivity: samples are drawn on the input triangles.
-    if (config.method == HierarchyMethod::eliminate) {
+    if (config.method == HierarchyMethod::eliminate)
         return eliminate_hierarchy(scene, config, out, stats);
-    }
     Builder b(scene, config);
     b.build_graph();
     if (b.mesh.n_faces() == 0) return malformed_input("mesh has no non-degenerate triangles");
     b.surface = std::make_unique<InputSurface>(scene, b.welded);
-    if (config.method != HierarchyMethod::simplify) {
+    if (config.method != HierarchyMethod::simplify)
         build_from_base_mesh(b, config, out, stats);
-    } else {
+    else
         build_by_simplification(b, config, out, stats);
-    }
     if (stats) stats->projection_candidates = b.surface->candidates_examined();
     return BakeError();
 }

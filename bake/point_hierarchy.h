@@ -20,6 +20,7 @@ struct PointHierarchy {
     std::vector<float> radius;                // relevance radius, object space (§4.5)
     std::vector<uint32_t> neighbour_offsets;  // size() + 1 entries
     std::vector<uint32_t> neighbours;         // relevant neighbours, as point indices
+    std::vector<uint32_t> record_parent;  // simplify: the merge record (bake/particle_parents.h)
     size_t size() const { return host_triangle.size(); }
 };
 

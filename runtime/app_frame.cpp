@@ -56,7 +56,8 @@ void draw_lines(Renderer* r, const glm::mat4& vp, const float* lines, uint32_t c
     renderer_check_errors(r, "app lines");
 }
 
-// Dots: the centre test against the body's depth in the pipeline's own framebuffer (vertex
+// Dots: the visibility test (centre pixel, else the depth interpolated around it; runtime/
+// renderer_shaders.h) against the body's depth in the pipeline's own framebuffer (vertex
 // shader), then the per-pixel depth test against the application's framebuffer.
 void draw_dots(Renderer* r, const glm::mat4& vp, const float* positions, const float* sizes,
                uint32_t count) {

@@ -10,6 +10,7 @@
 
 #include "runtime/camera.h"
 #include "runtime/double_sided.h"
+#include "runtime/frame_point_stages.h"
 #include "runtime/frame_pose.h"
 #include "runtime/particle_frame.h"
 #include "runtime/point_placement.h"
@@ -76,15 +77,6 @@ StrokeFrameInput pipeline_stroke_input(const Pipeline& p) {
 }
 
 namespace {
-
-// The finest quarter of the bake is where the run-time refinement takes over: extra points
-// can be drawn only where the size rule draws baked points of that region size, so while none
-// of them has a size (full views of a dense bake) the frame needs no refinement at all.
-bool hierarchy_running_out(const float* size, uint32_t baked) {
-    for (uint32_t i = baked - baked / 4; i < baked; ++i)
-        if (size[i] > 0.0f) return true;
-    return baked < 4;
-}
 
 // Baked points enough for their own triangulation to be the refinement's domain.
 constexpr uint32_t kMinTriangulatedPoints = 256;
@@ -325,110 +317,6 @@ RefinedHosts refined_hosts(const Pipeline& p) {
     return r;
 }
 
-// Thesis Alg. 6.3, 6.4 and 3.2 over every baked point.
-void full_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
-    const Asset& a = *p->asset;
-    const PointStageFrame f = point_stage_frame(p);  // threads and SIMD: runtime/point_stages.h
-    point_stage_place(&p->pool, f, nullptr, a.points.point_count);
-    face_double_sided_points(a.points.point_count, p->point_double_sided.get(),
-                             p->point_positions.get(), p->point_normals.get(), p->size_params.eye);
-    if (t) t->place += ms_since(clock);
-    const uint32_t baked = a.points.point_count;
-    if (p->config.relevance_update)
-        point_stage_relevance(&p->pool, f, nullptr, baked);
-    else
-        std::memcpy(p->radius.get(), p->rest_radius.get(), size_t(baked) * 4);
-    if (t) t->relevance += ms_since(clock);
-    point_stage_size(&p->pool, f, nullptr, baked);
-    p->lod_sizes_clear = false;
-    if (t) t->size += ms_since(clock);
-}
-
-// The same over the clusters' selection (thesis §9.1.1, runtime/point_clusters.h): the
-// points run are placed, re-scaled and sized; their neighbours only placed; every other
-// baked point keeps size 0.
-void lod_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
-    const Asset& a = *p->asset;
-    PointClusters& c = p->clusters;
-    if (p->lod_sizes_clear)
-        point_clusters_clear_sizes(c, p->size.get());
-    else
-        std::fill(p->size.get(), p->size.get() + a.points.point_count, 0.0f);
-    p->lod_sizes_clear = true;
-    LodFrame frame;
-    frame.vertex_positions = p->vertex_positions.get();
-    frame.vertex_normals = p->vertex_normals.get();
-    frame.params = &p->size_params;
-    frame.viewport_width = p->viewport_width;
-    frame.relevance_update = p->config.relevance_update;
-    const uint32_t baked = a.points.point_count;  // hierarchy_running_out's finest quarter
-    if (p->config.refinement_budget > 0) frame.size_from = baked - baked / 4;
-    point_clusters_select(&c, a, frame);
-    const uint32_t* run = c.run.get();
-    const PointStageFrame f = point_stage_frame(p);  // threads and SIMD: runtime/point_stages.h
-    point_stage_place(&p->pool, f, c.placed.get(), c.placed_count);
-    face_listed_double_sided_points(run, c.run_count, p->point_double_sided.get(),
-                                    p->point_positions.get(), p->point_normals.get(),
-                                    p->size_params.eye);
-    if (t) t->place += ms_since(clock);
-    if (p->config.relevance_update)
-        point_stage_relevance(&p->pool, f, run, c.run_count);
-    else
-        for (uint32_t j = 0; j < c.run_count; ++j) p->radius[run[j]] = p->rest_radius[run[j]];
-    if (t) t->relevance += ms_since(clock);
-    point_stage_size(&p->pool, f, run, c.run_count);
-    if (t) t->size += ms_since(clock);
-}
-
-// hierarchy_running_out over the selection: only run points can have a size.
-bool lod_running_out(const PointClusters& c, const float* size, uint32_t baked) {
-    for (uint32_t j = 0; j < c.run_count; ++j)
-        if (c.run[j] >= baked - baked / 4 && size[c.run[j]] > 0.0f) return true;
-    return baked < 4;
-}
-
-// The run-time refinement (runtime/point_refinement.h) after the baked points are sized.
-void refine_stage(Pipeline* p, bool lod, StageTimes* t, Clock::time_point* clock) {
-    const Asset& a = *p->asset;
-    const uint32_t baked = a.points.point_count;
-    RefinedPoints extra;
-    extra.capacity = p->config.refinement_budget;
-    extra.positions = p->point_positions.get() + size_t(baked) * 3;
-    extra.normals = p->point_normals.get() + size_t(baked) * 3;
-    extra.radius = p->radius.get() + baked;
-    extra.triangle = p->refined_triangle.get();
-    extra.index = p->refined_index.get();
-    if (p->refine_on_points) {  // corners are the baked points, as placed this frame
-        if (lod) {  // every corner, not only the selection (close-ups: the cut keeps most)
-            place_points(a.points, a.mesh.indices, p->vertex_positions.get(),
-                         p->vertex_normals.get(), p->point_positions.get(), p->point_normals.get());
-            face_double_sided_points(baked, p->point_double_sided.get(), p->point_positions.get(),
-                                     p->point_normals.get(), p->size_params.eye);
-        }
-        MeshView domain = p->refinement_domain;
-        domain.positions = p->point_positions.get();
-        domain.normals = p->point_normals.get();  // double-sided ones already face the eye
-        refine_points(&p->refinement, domain, domain.positions, domain.normals, nullptr,
-                      p->size_params, p->config.relevance_update, &extra, &p->refinement_stats);
-    } else {
-        refine_points(&p->refinement, a.mesh, p->vertex_positions.get(), p->vertex_normals.get(),
-                      a.sides.triangle_double_sided, p->size_params, p->config.relevance_update,
-                      &extra, &p->refinement_stats);
-    }
-    p->refined_count = extra.count;
-    if (t) t->refine += ms_since(clock);
-    size_stipples(extra.count, extra.positions, extra.normals, extra.radius, p->size_params,
-                  p->size.get() + baked);
-    if (!lod) {
-        fade_baked_points(p->refinement, a.points, p->size.get());
-        return;
-    }
-    if (!p->refinement.hand_over) return;  // as fade_baked_points: the points domain fades none
-    const PointClusters& c = p->clusters;  // fade_baked_points over the selection
-    for (uint32_t j = 0; j < c.run_count; ++j)
-        p->size[c.run[j]] *= p->refinement.fade[a.points.host_triangle[c.run[j]]];
-}
-
 }  // namespace
 
 void pipeline_update(Pipeline* p, const AnimationState& state, StageTimes* t) {
@@ -437,17 +325,8 @@ void pipeline_update(Pipeline* p, const AnimationState& state, StageTimes* t) {
     pose_mesh(p, state, t, &clock);
     if (p->config.path == FramePath::gpu) return gpu_path_update(p, t);  // runtime/gpu_stages.h
     const bool lod = p->config.lod && p->clusters.cluster_count > 0;
-    if (lod)
-        lod_point_stages(p, t, &clock);
-    else
-        full_point_stages(p, t, &clock);
+    pipeline_point_stages(p, lod, t, &clock);  // runtime/frame_point_stages.h
     const uint32_t baked = a.points.point_count;
-    // Where the baked hierarchy runs out, continue it (extra points after the baked ones).
-    p->refined_count = 0;
-    p->refinement_stats = RefinementStats();
-    if (p->config.refinement_budget > 0 && (lod ? lod_running_out(p->clusters, p->size.get(), baked)
-                                                : hierarchy_running_out(p->size.get(), baked)))
-        refine_stage(p, lod, t, &clock);
     p->points_drawn = compact_drawn_points(p, lod ? baked : 0, baked + p->refined_count);
     p->dots_coloured = style_dot_colours(&p->style, a, p->config, p->size.get(), refined_hosts(*p));
     if (t) t->size += ms_since(&clock);

@@ -169,17 +169,19 @@ struct VisibleDot {
 };
 
 // The dots the last frame drew where the picture shows them: size > 0, centre inside the
-// image and not hidden by the mesh (the depth test the GPU makes, at the centre pixel; the
-// depth copy holds the mesh pass only, so a dot hidden by a paintstroke still counts).
+// image and not hidden by the mesh (the depth test the GPU makes, at the centre pixel or
+// interpolated from the 2x2 texels around it; the depth copy holds the mesh pass only, so a
+// dot hidden by a paintstroke still counts).
 // `depth` is renderer_read_depth's output (bottom row first). Writes at most `capacity`
 // (p.point_capacity is always enough) and returns the count.
 uint32_t pipeline_visible_dots(const Pipeline& p, const float* depth, VisibleDot* out,
                                uint32_t capacity);
 
 // The dots the last frame sized (size > 0, centre inside the image and on the mesh) that the
-// mesh in front hides at their centre pixel: the complement of pipeline_visible_dots on the
-// object. Coherence measures use it to tell occlusion (a leg passing in front of the other)
-// from dots the size rule dropped (docs/measure.md).
+// mesh in front hides (the same test): the complement of pipeline_visible_dots near the
+// object (one of the 2x2 texels around the centre on it). Coherence measures use it to tell
+// occlusion (a leg passing in front of the other) from dots the size rule dropped
+// (docs/measure.md).
 uint32_t pipeline_hidden_dots(const Pipeline& p, const float* depth, VisibleDot* out,
                               uint32_t capacity);
 

@@ -62,6 +62,7 @@ void ask_about(ParticleSet* s, const uint32_t* ids, uint32_t n, ParticleDecideFn
 void settle(ParticleSet* s, const ParticleTree& t, Joins* j) {
     for (uint32_t i = 0; i < s->count; ++i) {
         const uint32_t p = s->list[i];
+        if (p >= t.count) break;  // extra members (ascending, after the tree's): the caller's
         uint8_t& st = s->state[p];
         if (!(st & kParticleActive) || (st & kParticleQueued)) continue;
         if (!parent_shows(*s, t, p)) {
@@ -137,12 +138,12 @@ void merge_list(ParticleSet* s, uint32_t born) {
 }  // namespace
 
 Status particle_set_init(ParticleSet* set, const ParticleTree& tree, int fade_frames,
-                         uint32_t list_capacity) {
+                         uint32_t list_capacity, uint32_t extra_ids) {
     *set = ParticleSet();
     if (fade_frames < 1 || fade_frames > 255)
         return make_status(StatusCode::invalid_argument, "fade frames %d is outside [1, 255]",
                            fade_frames);
-    const size_t n = tree.count;
+    const size_t n = size_t(tree.count) + extra_ids;
     const size_t m =
         list_capacity == 0 ? n : std::min<size_t>(n, std::max(list_capacity, tree.root_count));
     set->state = make_buffer<uint8_t>(n);
@@ -159,7 +160,8 @@ Status particle_set_init(ParticleSet* set, const ParticleTree& tree, int fade_fr
     std::fill(set->state.get(), set->state.get() + n, uint8_t(0));
     std::fill(set->want.get(), set->want.get() + n + m, uint8_t(0));
     std::fill(set->alpha.get(), set->alpha.get() + n, 0.0f);
-    set->capacity = tree.count;
+    set->capacity = uint32_t(n);
+    set->tree_count = tree.count;
     set->list_capacity = uint32_t(m);
     set->fade_step = 1.0f / float(fade_frames);
     for (uint32_t r = 0; r < tree.root_count; ++r) {
@@ -172,17 +174,53 @@ Status particle_set_init(ParticleSet* set, const ParticleTree& tree, int fade_fr
     return {};
 }
 
-void particles_adjust(ParticleSet* set, const ParticleTree& tree, ParticleDecideFn decide,
-                      void* user) {
+void particles_adjust_tree(ParticleSet* set, const ParticleTree& tree, ParticleDecideFn decide,
+                           void* user) {
     set->joined = set->left = set->asked = 0;
     uint32_t n = 0;
-    for (uint32_t i = 0; i < set->count; ++i)
+    for (uint32_t i = 0; i < set->count && set->list[i] < tree.count; ++i)
         if (set->state[set->list[i]] & kParticleActive) set->ask[n++] = set->list[i];
     ask_about(set, set->ask.get(), n, decide, user);
     Joins joins;
     settle(set, tree, &joins);
     unfold_rounds(set, tree, decide, user, &joins);
-    merge_list(set, joins.born);
+    set->born_count = joins.born;
+}
+
+void particles_adjust_finish(ParticleSet* set) {
+    merge_list(set, set->born_count);
+    set->born_count = 0;
+}
+
+void particles_adjust(ParticleSet* set, const ParticleTree& tree, ParticleDecideFn decide,
+                      void* user) {
+    particles_adjust_tree(set, tree, decide, user);
+    particles_adjust_finish(set);
+}
+
+uint32_t particle_set_room(const ParticleSet& set) {
+    const uint64_t used = uint64_t(set.count) + set.born_count;
+    return used >= set.list_capacity ? 0u : uint32_t(set.list_capacity - used);
+}
+
+bool particle_set_join(ParticleSet* set, uint32_t id) {
+    uint8_t& st = set->state[id];
+    if (st & kParticleActive) return true;
+    if (!(st & kParticleListed)) {
+        if (particle_set_room(*set) == 0) return false;
+        set->born[set->born_count++] = id;
+        set->alpha[id] = 0.0f;
+    }
+    st |= kParticleActive | kParticleListed;
+    ++set->joined;
+    return true;
+}
+
+void particle_set_leave(ParticleSet* set, uint32_t id) {
+    uint8_t& st = set->state[id];
+    if (!(st & kParticleActive)) return;
+    st &= uint8_t(~(kParticleActive | kParticleUnfolded));
+    ++set->left;
 }
 
 }  // namespace stipple

@@ -30,7 +30,11 @@ enum : uint8_t {
 using ParticleDecideFn = void (*)(const uint32_t* ids, uint32_t count, uint8_t* unfold, void* user);
 
 struct ParticleSet {
-    uint32_t capacity = 0;  // the tree's particle count
+    uint32_t capacity = 0;  // ids: the tree's particles, then the caller's extra ids
+    // Ids below tree_count are the tree's; ids from tree_count on are members the caller adds
+    // and removes itself each frame (particle_set_join / particle_set_leave: the temporary
+    // particles of runtime/particle_temporary.h), which fade like the tree's.
+    uint32_t tree_count = 0;
     // The most particles listed at once (the per-frame budget): the list and stage 1's scratch
     // are this long, and a node whose children would overflow it stays folded this frame.
     uint32_t list_capacity = 0;
@@ -43,6 +47,7 @@ struct ParticleSet {
     uint32_t count = 0;
     bool settled = false;  // false until the first adjust: its joins show at once (no fade)
     Buffer<uint32_t> ask, born, queue;  // scratch: decisions asked, new members, next round
+    uint32_t born_count = 0;            // new members waiting for particles_adjust_finish
     // Of the last adjust:
     uint32_t active_count = 0;      // particles in the active set
     uint32_t joined = 0, left = 0;  // particles that joined or left the active set
@@ -52,13 +57,32 @@ struct ParticleSet {
 // Takes the set's memory for `tree` and activates its roots. The first adjust shows what it
 // unfolds at full opacity (there is nothing to fade from); later ones fade. fade_frames in [1,
 // 255]: frames a fade takes. list_capacity: the most particles listed at once (0: the whole
-// tree; at least the roots are listed).
+// tree; at least the roots are listed). extra_ids: ids past the tree, [tree.count, tree.count +
+// extra_ids), that the caller adds and removes (particle_set_join).
 [[nodiscard]] Status particle_set_init(ParticleSet* set, const ParticleTree& tree, int fade_frames,
-                                       uint32_t list_capacity = 0);
+                                       uint32_t list_capacity = 0, uint32_t extra_ids = 0);
 
 // One frame of stage 1: asks `decide` about the active set, folds and unfolds, advances the
 // fades. Afterwards set->list[0 .. count) are the particles to draw, each at alpha[id].
+// Equivalent to particles_adjust_tree then particles_adjust_finish.
 void particles_adjust(ParticleSet* set, const ParticleTree& tree, ParticleDecideFn decide,
                       void* user);
+
+// The same frame in two halves, so that extra members can join or leave in between: the
+// tree's half (asks, folds, unfolds; its new members wait in born) ...
+void particles_adjust_tree(ParticleSet* set, const ParticleTree& tree, ParticleDecideFn decide,
+                           void* user);
+// ... and the merge of the new members into the list with every member's fade.
+void particles_adjust_finish(ParticleSet* set);
+
+// Between the halves: extra id `id` (>= tree_count) is active this frame. A member fading out
+// fades back in from where it is; a new one starts at opacity 0 (or at once on the first
+// frame). False, and nothing changes, when the list has no room for a new member.
+bool particle_set_join(ParticleSet* set, uint32_t id);
+// Extra id `id` is no longer active: it fades out, and leaves the list when it has (its
+// kParticleListed bit clears in particles_adjust_finish).
+void particle_set_leave(ParticleSet* set, uint32_t id);
+// New members the list still has room for this frame.
+uint32_t particle_set_room(const ParticleSet& set);
 
 }  // namespace stipple

@@ -57,11 +57,12 @@ void decide(const uint32_t* ids, uint32_t count, uint8_t* unfold, void* user) {
     }
 }
 
-// The tree's parents: the asset's PTRE for its points, the rule (runtime/particle_tree.h)
-// over the bind pose for the rest (all of them without PTRE).
+// The tree's parents over the asset's points: its PTRE, or the rule (runtime/particle_tree.h)
+// over the bind pose. The temporary particles are not in the tree: they join and leave per
+// view (runtime/particle_temporary.h).
 Status tree_parents(ParticleStage* s, const Asset& asset) {
-    const uint32_t baked = asset.points.point_count, n = s->temporary.count;
-    if (asset.particle_parent && n == baked) {
+    const uint32_t n = asset.points.point_count;
+    if (asset.particle_parent) {
         s->tree.parent = asset.particle_parent;
         return {};
     }
@@ -69,14 +70,9 @@ Status tree_parents(ParticleStage* s, const Asset& asset) {
     Buffer<float> bind = make_buffer<float>(size_t(n) * 3);
     if (!s->parent || !bind)
         return make_status(StatusCode::out_of_memory, "out of memory for %u particles", n);
-    particle_bind_positions(asset.mesh, s->temporary.view, bind.get());
-    uint32_t first = 0;
-    if (asset.particle_parent) {
-        std::copy(asset.particle_parent, asset.particle_parent + baked, s->parent.get());
-        first = baked;
-    }
+    particle_bind_positions(asset.mesh, asset.points, bind.get());
     s->tree.parent = s->parent.get();
-    return particle_parents(n, bind.get(), INFINITY, s->parent.get(), first);
+    return particle_parents(n, bind.get(), INFINITY, s->parent.get());
 }
 
 }  // namespace
@@ -91,12 +87,13 @@ Status particle_stage_init(ParticleStage* s, const Asset& asset, const ParticleS
     s->style = style;
     s->width = width;
     s->height = height;
-    Status st = temporary_particles_build(&s->temporary, asset, tree_points);
-    if (st.ok()) st = tree_parents(s, asset);
-    const uint32_t n = s->temporary.count;
+    Status st = tree_parents(s, asset);
     const uint32_t* parents = s->tree.parent;
-    if (st.ok()) st = particle_tree_build(&s->tree, n, parents);
-    if (st.ok()) st = particle_set_init(&s->set, s->tree, style.fade_frames, list_points);
+    if (st.ok()) st = particle_tree_build(&s->tree, asset.points.point_count, parents);
+    if (st.ok()) st = temporary_particles_build(&s->temporary, asset, tree_points);
+    const uint32_t n = s->temporary.count;  // ids: the tree's, then the temporary slots
+    if (st.ok())
+        st = particle_set_init(&s->set, s->tree, style.fade_frames, list_points, n - s->tree.count);
     if (!st.ok()) return st;
     const uint32_t m = s->set.list_capacity;  // listed at most: samples and strokes
     s->bin_count = particle_bin_count(width, height, style);
@@ -150,15 +147,33 @@ Status particle_stage_init_gl(ParticleStage* s, const GlApi& gl) {
     return particle_renderer_init(&s->renderer, gl, s->set.list_capacity);
 }
 
-void particle_stage_adjust(ParticleStage* s, const ParticleFrame& frame) {
+void particle_stage_adjust_tree(ParticleStage* s, const ParticleFrame& frame) {
     if (!s->enabled) return;
     s->frame = frame;
     s->frame.points = &s->temporary.view;  // the asset's points and the temporary ones
     // Recomputed radii cover the asset's points only; with temporary particles the tree runs
     // on the bind radii (a stretch changes its density by the stretch, as for the stipples'
     // hierarchy without relevance updates).
-    if (s->temporary.count > s->temporary.baked) s->frame.radius = nullptr;
-    particles_adjust(&s->set, s->tree, decide, s);
+    if (s->temporary.slots > 0) s->frame.radius = nullptr;
+    particles_adjust_tree(&s->set, s->tree, decide, s);
+}
+
+void particle_stage_adjust_temporaries(ParticleStage* s) {
+    if (!s->enabled) return;
+    temporary_particles_update(&s->temporary, &s->set, s->frame, s->style);
+}
+
+void particle_stage_adjust_finish(ParticleStage* s) {
+    if (!s->enabled) return;
+    particles_adjust_finish(&s->set);
+    temporary_particles_release(&s->temporary, &s->set);
+}
+
+void particle_stage_adjust(ParticleStage* s, const ParticleFrame& frame) {
+    particle_stage_adjust_tree(s, frame);
+    // Temporary particles per view (GI'01 §5), then the merge and fades of every member.
+    particle_stage_adjust_temporaries(s);
+    particle_stage_adjust_finish(s);
 }
 
 void particle_stage_transform(ParticleStage* s) {

@@ -32,7 +32,8 @@ struct ParticleStage {
     ParticleStyle style;
     Buffer<uint32_t> parent;  // the particle tree's parents (runtime/particle_tree.h)
     // The asset's points continued by temporary particles (runtime/particle_temporary.h):
-    // particles [asset points, temporary.count) are the run-time refinement's extra points.
+    // ids [asset points, temporary.count) are slots that hold the run-time refinement's extra
+    // points the view needs, generated per frame (not in the tree).
     TemporaryParticles temporary;
     ParticleTree tree;
     ParticleSet set;
@@ -57,15 +58,13 @@ struct ParticleStage {
 };
 
 // Builds the particle tree from the asset's points (parents by particle_parents over the bind
-// pose, or the asset's PTRE), continued by temporary particles up to `tree_points` particles
-// in all (GI'01 §5; none when tree_points <= the asset's points), and takes every buffer for
-// `style` and an image of width x height. Fails with out_of_memory, or invalid_argument for a
-// style whose values are out of range.
-// list_points: the most particles listed (drawn, fades included) at once, the per-frame
-// budget that sizes stage 1's list, stage 3's samples and stage 4's strokes (0: the whole
-// tree, as before). The tree's other per-particle arrays cost about 50 bytes a particle, the
-// listed ones about 150 more: a large tree of temporary particles with a small list spends
-// its memory on ids, and the list on what the view shows (docs/particles.md).
+// pose, or the asset's PTRE), with tree_points - the asset's points slots of temporary
+// particles generated per view (GI'01 §5; none when tree_points <= the asset's points; ids
+// tree_points in all), and takes every buffer for `style` and an image of width x height. Fails
+// with out_of_memory, or invalid_argument for a style whose values are out of range. list_points:
+// the most particles listed (drawn, fades included) at once, the per-frame budget that sizes stage
+// 1's list, stage 3's samples and stage 4's strokes (0: every id). An id costs about 46 bytes, a
+// listed particle about 106 more (docs/particles.md).
 [[nodiscard]] Status particle_stage_init(ParticleStage* s, const Asset& asset,
                                          const ParticleStyle& style, int width, int height,
                                          uint32_t tree_points = kDefaultParticleTreePoints,
@@ -76,8 +75,14 @@ struct ParticleStage {
 // below in order (separate for the benchmarks).
 void particle_stage_update(ParticleStage* s, const ParticleFrame& frame);
 void particle_stage_adjust(ParticleStage* s, const ParticleFrame& frame);  // stage 1
-void particle_stage_transform(ParticleStage* s);                           // stage 3
-void particle_stage_build_strokes(ParticleStage* s);                       // stage 4, CPU
+// Stage 1 in its three parts (particle_stage_adjust runs them in order): the baked tree's
+// folds and unfolds, the temporary particles this view needs (runtime/particle_temporary.h),
+// and the merge with every member's fade and the release of faded-out slots.
+void particle_stage_adjust_tree(ParticleStage* s, const ParticleFrame& frame);
+void particle_stage_adjust_temporaries(ParticleStage* s);
+void particle_stage_adjust_finish(ParticleStage* s);
+void particle_stage_transform(ParticleStage* s);      // stage 3
+void particle_stage_build_strokes(ParticleStage* s);  // stage 4, CPU
 
 // The GPU half of stage 4: draws the strokes into `framebuffer`, hidden by `depth_texture`.
 void particle_stage_draw(ParticleStage* s, GLuint framebuffer, GLuint depth_texture);

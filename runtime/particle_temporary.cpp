@@ -4,33 +4,11 @@
 #include <cmath>
 #include <cstring>
 
-#include "runtime/point_refinement.h"
-#include "runtime/refinement_sequence.h"
+#include "runtime/stipple_size.h"
 
 namespace stipple {
 
 namespace {
-
-// An extra point of the refinement, ranked by the hierarchy index its region stands for.
-struct Candidate {
-    double index;  // A / region: where the point falls in the coarse-to-fine order
-    uint32_t triangle, rank;
-    float region;
-};
-
-bool before(const Candidate& a, const Candidate& b) {
-    if (a.index != b.index) return a.index < b.index;
-    if (a.triangle != b.triangle) return a.triangle < b.triangle;
-    return a.rank < b.rank;
-}
-
-// Extra points of triangle t whose index A * (rho_t + (k + phase) / a) lies below `total`.
-uint32_t extra_count(const RefinementMesh& r, uint32_t t, double area_total, uint32_t total) {
-    const double a = r.bind_area[t];
-    if (!(a > 0.0)) return 0;
-    const double n = (double(total) / area_total - double(r.density[t])) * a - double(r.phase[t]);
-    return n > 0.0 ? uint32_t(std::min(std::ceil(n), 1e6)) : 0u;
-}
 
 // The baked radii of the bake's second half over the A / i law (sqrt(A / i)).
 float fitted_radius_scale(const PointsView& p, double area_total) {
@@ -50,29 +28,43 @@ Status out_of_memory(uint32_t total) {
                        total);
 }
 
-// Lists the candidates of every triangle, ranked coarse to fine (at most `total` - baked).
-Status rank_candidates(const RefinementMesh& r, double area_total, uint32_t total,
-                       Buffer<Candidate>* out, uint32_t* count) {
-    // A little past the total (the local densities do not add up to the bake's exactly), so
-    // that the first total - baked candidates fill the budget.
-    total = uint32_t(std::min(double(total) * 1.05 + 64.0, 4e9));
-    uint64_t n = 0;
-    for (uint32_t t = 0; t < r.triangle_count; ++t) n += extra_count(r, t, area_total, total);
-    if (n > (uint64_t(1) << 28)) n = uint64_t(1) << 28;
-    if (!alloc(out, size_t(std::max<uint64_t>(n, 1)))) return out_of_memory(total);
-    Candidate* c = out->get();
-    uint64_t k = 0;
-    for (uint32_t t = 0; t < r.triangle_count && k < n; ++t) {
-        const uint32_t m = extra_count(r, t, area_total, total);
-        const double a = r.bind_area[t];
-        for (uint32_t j = 0; j < m && k < n; ++j) {
-            const double density = double(r.density[t]) + (double(j) + double(r.phase[t])) / a;
-            c[k++] = Candidate{area_total * density, t, j, float(1.0 / density)};
-        }
-    }
-    std::sort(c, c + k, before);
-    *count = uint32_t(k);
-    return {};
+// The per-id arrays: the baked points copied, the slots' entries written when taken.
+bool alloc_ids(TemporaryParticles* t, const PointsView& baked) {
+    const uint32_t n = t->count, b = baked.point_count;
+    if (!alloc(&t->host_triangle, n) || !alloc(&t->bary_u, n) || !alloc(&t->bary_v, n) ||
+        !alloc(&t->radius, n))
+        return false;
+    std::memcpy(t->host_triangle.get(), baked.host_triangle, sizeof(uint32_t) * b);
+    std::memcpy(t->bary_u.get(), baked.bary_u, sizeof(float) * b);
+    std::memcpy(t->bary_v.get(), baked.bary_v, sizeof(float) * b);
+    std::memcpy(t->radius.get(), baked.radius, sizeof(float) * b);
+    std::fill(t->host_triangle.get() + b, t->host_triangle.get() + n, 0u);
+    std::fill(t->bary_u.get() + b, t->bary_u.get() + n, 0.0f);
+    std::fill(t->bary_v.get() + b, t->bary_v.get() + n, 0.0f);
+    std::fill(t->radius.get() + b, t->radius.get() + n, 0.0f);
+    return true;
+}
+
+bool alloc_slots(TemporaryParticles* t, uint32_t triangles, uint32_t vertices) {
+    const uint32_t s = t->slots;
+    if (!alloc(&t->triangle, s) || !alloc(&t->rank, s) || !alloc(&t->prev, s) ||
+        !alloc(&t->free_slots, s) || !alloc(&t->linked, triangles) || !alloc(&t->tail, triangles) ||
+        !alloc(&t->shown, triangles) || !alloc(&t->need, triangles) ||
+        !alloc(&t->touched, triangles) || !alloc(&t->clip, vertices) ||
+        !alloc(&t->outside, vertices) || !alloc(&t->facing, vertices))
+        return false;
+    std::fill(t->triangle.get(), t->triangle.get() + s, kFreeSlot);
+    std::fill(t->rank.get(), t->rank.get() + s, 0u);
+    std::fill(t->prev.get(), t->prev.get() + s, kFreeSlot);
+    // LIFO: slot 0 is taken first.
+    for (uint32_t k = 0; k < s; ++k) t->free_slots[k] = s - 1 - k;
+    t->free_count = s;
+    std::fill(t->linked.get(), t->linked.get() + triangles, 0u);
+    std::fill(t->tail.get(), t->tail.get() + triangles, kFreeSlot);
+    std::fill(t->shown.get(), t->shown.get() + triangles, 0u);
+    std::fill(t->need.get(), t->need.get() + triangles, 0.0f);
+    t->vertex_count = vertices;
+    return true;
 }
 
 }  // namespace
@@ -97,46 +89,24 @@ Status temporary_particles_build(TemporaryParticles* t, const Asset& asset, uint
         return {};
     // The refinement's tables on the render mesh (bind areas, root cells, baked density and
     // first-point phases per triangle): the same sequence the stipples continue with.
-    Buffer<float> bind = make_buffer<float>(size_t(baked.point_count) * 3);
-    if (!bind) return out_of_memory(total);
-    particle_bind_positions(asset.mesh, baked, bind.get());
-    RefinementMesh r;
-    Status st = refinement_init(&r, asset.mesh, baked, bind.get(), RefinementDomain::mesh);
+    Status st;
+    {
+        Buffer<float> bind = make_buffer<float>(size_t(baked.point_count) * 3);
+        if (!bind) return out_of_memory(total);
+        particle_bind_positions(asset.mesh, baked, bind.get());
+        st = refinement_init(&t->mesh, asset.mesh, baked, bind.get(), RefinementDomain::mesh);
+    }
     if (!st.ok()) return st;
     double area_total = 0.0;
-    for (uint32_t k = 0; k < r.triangle_count; ++k) area_total += r.bind_area[k];
+    for (uint32_t k = 0; k < t->mesh.triangle_count; ++k) area_total += t->mesh.bind_area[k];
     if (!(area_total > 0.0)) return {};
-    Buffer<Candidate> candidates;
-    uint32_t found = 0;
-    st = rank_candidates(r, area_total, total, &candidates, &found);
-    if (!st.ok()) return st;
-    const uint32_t extra = std::min(found, total - baked.point_count);
-    const uint32_t n = baked.point_count + extra;
-    if (!alloc(&t->host_triangle, n) || !alloc(&t->bary_u, n) || !alloc(&t->bary_v, n) ||
-        !alloc(&t->radius, n) || !alloc(&t->triangle, std::max(extra, 1u)) ||
-        !alloc(&t->rank, std::max(extra, 1u)))
+    t->slots = total - baked.point_count;
+    t->count = total;
+    if (!alloc_ids(t, baked) || !alloc_slots(t, asset.mesh.triangle_count, asset.mesh.vertex_count))
         return out_of_memory(total);
-    const uint32_t b = baked.point_count;
-    std::memcpy(t->host_triangle.get(), baked.host_triangle, sizeof(uint32_t) * b);
-    std::memcpy(t->bary_u.get(), baked.bary_u, sizeof(float) * b);
-    std::memcpy(t->bary_v.get(), baked.bary_v, sizeof(float) * b);
-    std::memcpy(t->radius.get(), baked.radius, sizeof(float) * b);
     t->radius_scale = fitted_radius_scale(baked, area_total);
-    for (uint32_t j = 0; j < extra; ++j) {
-        const Candidate& c = candidates[j];
-        const glm::vec2 uv =
-            refinement_barycentric(r.frame.get() + size_t(c.triangle) * 3, r.root_depth[c.triangle],
-                                   triangle_variant(c.triangle), c.rank);
-        t->host_triangle[b + j] = c.triangle;
-        t->bary_u[b + j] = uv.x;
-        t->bary_v[b + j] = uv.y;
-        t->radius[b + j] = t->radius_scale * std::sqrt(c.region / kRegionPerRadiusSquared);
-        t->triangle[j] = c.triangle;
-        t->rank[j] = c.rank;
-    }
-    t->count = n;
     t->view = PointsView();
-    t->view.point_count = n;
+    t->view.point_count = t->count;
     t->view.host_triangle = t->host_triangle.get();
     t->view.bary_u = t->bary_u.get();
     t->view.bary_v = t->bary_v.get();

@@ -40,7 +40,9 @@ bool particle_parents_valid(uint32_t count, const uint32_t* parent);
 // first point of i's level (0 for point 0).
 uint32_t particle_level_start(uint32_t i);
 
-// The parent rule (for every bake method: the hierarchy's order is all it needs): each point's
+// The parent rule of the runtime and of the eliminate, relax and random bakes (the hierarchy's
+// order is all it needs; a simplify bake stores its own merge record fitted to the same
+// levels, bake/particle_parents.h, docs/particles.md "Parents"): each point's
 // parent is the nearest point of the level above its own (ties to the smaller index) in the
 // given pose: the point it is merged into when the hierarchy is cut above its level, as a
 // vertex merge gathers nearby vertices into one (GI'01 Figure 2). Children are thus one level

@@ -262,7 +262,8 @@ Status bind_grams(PointClusters* c, const Asset& a) {
     c->deforming = a.skinned || a.has_morph();
     if (!c->deforming) return {};
     if (!alloc(&c->bind_gram, size_t(m.triangle_count) * 3) ||
-        !alloc(&c->stretch, m.triangle_count) || !alloc(&c->edge_stretch, m.triangle_count))
+        !alloc(&c->area_ratio, m.triangle_count) || !alloc(&c->edge_ratio, m.triangle_count) ||
+        !alloc(&c->reach_split, c->cluster_count))
         return make_status(StatusCode::out_of_memory, "out of memory for %u triangles",
                            m.triangle_count);
     for (uint32_t t = 0; t < m.triangle_count; ++t) {
@@ -273,6 +274,44 @@ Status bind_grams(PointClusters* c, const Asset& a) {
         c->bind_gram[size_t(t) * 3] = glm::dot(e1, e1);
         c->bind_gram[size_t(t) * 3 + 1] = glm::dot(e1, e2);
         c->bind_gram[size_t(t) * 3 + 2] = glm::dot(e2, e2);
+    }
+    // Each cluster's reach: the triangles with a bind area first, the degenerate ones last.
+    const float* g = c->bind_gram.get();
+    for (uint32_t k = 0; k < c->cluster_count; ++k) {
+        uint32_t* first = c->reach.get() + c->reach_begin[k];
+        uint32_t* last = c->reach.get() + c->reach_begin[k + 1];
+        c->reach_split[k] = uint32_t(
+            std::stable_partition(
+                first, last, [g](uint32_t t) { return bind_area_defined(g + size_t(t) * 3); }) -
+            c->reach.get());
+    }
+    return {};
+}
+
+// The neighbours of each point that its cluster's prefix up to it does not hold.
+Status closure_lists(PointClusters* c, const PointsView& p) {
+    const uint32_t n = p.point_count;
+    Buffer<uint32_t> at = make_buffer<uint32_t>(n), cluster = make_buffer<uint32_t>(n);
+    if (!at || !cluster || !alloc(&c->closure_begin, size_t(n) + 1))
+        return make_status(StatusCode::out_of_memory, "out of memory for %u points", n);
+    for (uint32_t k = 0; k < c->cluster_count; ++k)
+        for (uint32_t j = c->point_begin[k]; j < c->point_begin[k + 1]; ++j)
+            at[c->order[j]] = j, cluster[c->order[j]] = k;
+    for (int pass = 0; pass < 2; ++pass) {
+        if (pass == 1 && !alloc(&c->closure, c->closure_begin[n]))
+            return make_status(StatusCode::out_of_memory, "out of memory for %u points", n);
+        uint32_t count = 0;
+        for (uint32_t j = 0; j < n; ++j) {
+            c->closure_begin[j] = count;
+            const uint32_t i = c->order[j];
+            for (uint32_t e = p.neighbour_offsets[i]; e < p.neighbour_offsets[i + 1]; ++e) {
+                const uint32_t q = p.neighbours[e];
+                if (cluster[q] == cluster[i] && at[q] <= j) continue;  // in every prefix with i
+                if (pass == 1) c->closure[count] = q;
+                ++count;
+            }
+        }
+        c->closure_begin[n] = count;
     }
     return {};
 }
@@ -289,254 +328,15 @@ Status point_clusters_init(PointClusters* c, const Asset& a, const float* rest_r
     if (st.ok()) st = cluster_bounds(c, a, rest_radius);
     if (st.ok()) st = forced_points(c, a);
     if (st.ok()) st = bind_grams(c, a);
+    if (st.ok()) st = closure_lists(c, a.points);
     c->word_count = (c->point_count + 63) / 64;
     if (st.ok() && (!alloc(&c->run, c->point_count) || !alloc(&c->placed, c->point_count) ||
-                    !alloc(&c->run_bits, c->word_count) || !alloc(&c->placed_bits, c->word_count)))
+                    !alloc(&c->rest, c->point_count) || !alloc(&c->run_bits, c->word_count) ||
+                    !alloc(&c->placed_bits, c->word_count)))
         st = make_status(StatusCode::out_of_memory, "out of memory for %u points", c->point_count);
     if (!st.ok()) return st;
     c->stats.clusters = c->cluster_count;
     return {};
-}
-
-namespace {
-
-// Stretch of each triangle (bind -> posed). Alg. 6.4's area measure follows the local area
-// (exactly, under a linear deformation: I2 scales by det^2), so its radius grows with the
-// square root of the area ratio; the mean-distance measure with the edge lengths, bounded by
-// the largest edge ratio. A degenerate bind triangle takes its edge ratio for both.
-void triangle_stretch(PointClusters* c, const MeshView& m, const float* posed) {
-    for (uint32_t t = 0; t < m.triangle_count; ++t) {
-        const uint32_t* tri = m.indices + size_t(t) * 3;
-        const glm::vec3 o = glm::make_vec3(vertex(posed, tri[0]));
-        const glm::vec3 e1 = glm::make_vec3(vertex(posed, tri[1])) - o;
-        const glm::vec3 e2 = glm::make_vec3(vertex(posed, tri[2])) - o;
-        const float a = c->bind_gram[size_t(t) * 3], b = c->bind_gram[size_t(t) * 3 + 1],
-                    cc = c->bind_gram[size_t(t) * 3 + 2];
-        const float a2 = glm::dot(e1, e1), b2 = glm::dot(e1, e2), c2 = glm::dot(e2, e2);
-        const float e3 = a2 - 2.0f * b2 + c2, e3_bind = a - 2.0f * b + cc;  // |e2 - e1|^2
-        const float lambda = std::max({a > 0.0f ? a2 / a : (a2 > 0.0f ? 1e30f : 1.0f),
-                                       cc > 0.0f ? c2 / cc : (c2 > 0.0f ? 1e30f : 1.0f),
-                                       e3_bind > 0.0f ? e3 / e3_bind : (e3 > 0.0f ? 1e30f : 1.0f)});
-        c->edge_stretch[t] = std::sqrt(lambda);
-        const float det = a * cc - b * b, det2 = a2 * c2 - b2 * b2;  // area^2 (times 4)
-        c->stretch[t] = det > 1e-6f * (a + cc) * (a + cc)
-                            ? std::sqrt(std::sqrt(std::max(det2, 0.0f) / det))
-                            : c->edge_stretch[t];
-    }
-}
-
-struct Box {
-    glm::vec3 lo, hi;
-};
-
-Box cluster_box(const PointClusters& c, uint32_t k, const float* positions) {
-    Box b{glm::vec3(1e30f), glm::vec3(-1e30f)};
-    for (uint32_t j = c.vertex_begin[k]; j < c.vertex_begin[k + 1]; ++j) {
-        const glm::vec3 v = glm::make_vec3(vertex(positions, c.vertices[j]));
-        b.lo = glm::min(b.lo, v);
-        b.hi = glm::max(b.hi, v);
-    }
-    return b;
-}
-
-// The box's 8 corners in clip space: outside when all lie beyond one plane. The renderer
-// drops a dot whose centre falls outside the image or the depth range (runtime/renderer.cpp),
-// so x and y get one pixel of margin for rounding and z none. Also the smallest clip w.
-bool outside_frustum(const Box& b, const glm::mat4& vp, const glm::vec2& margin, float* w_min) {
-    uint32_t all = 0x3F;
-    *w_min = 1e30f;
-    for (int corner = 0; corner < 8; ++corner) {
-        const glm::vec3 p((corner & 1) ? b.hi.x : b.lo.x, (corner & 2) ? b.hi.y : b.lo.y,
-                          (corner & 4) ? b.hi.z : b.lo.z);
-        const glm::vec4 q = vp * glm::vec4(p, 1.0f);
-        const float wx = q.w * (1.0f + margin.x), wy = q.w * (1.0f + margin.y);
-        const uint32_t out = (q.x > wx) | (q.x < -wx) << 1 | (q.y > wy) << 2 | (q.y < -wy) << 3 |
-                             (q.z > q.w) << 4 | (q.z < -q.w) << 5;
-        all &= out;
-        *w_min = std::min(*w_min, q.w);
-    }
-    return all != 0;
-}
-
-// Every vertex normal n of the cluster faces away from every point p of its box:
-// n . (eye - p) < 0. A placed point's normal blends these with weights >= 0 (Gouraud), so it
-// faces away too and the size rule gives it size 0.
-bool faces_away(const PointClusters& c, uint32_t k, const Box& b, const float* normals,
-                const glm::vec3& eye) {
-    const float scale = glm::length(eye - 0.5f * (b.lo + b.hi)) + glm::length(b.hi - b.lo);
-    for (uint32_t j = c.vertex_begin[k]; j < c.vertex_begin[k + 1]; ++j) {
-        const glm::vec3 n = glm::make_vec3(vertex(normals, c.vertices[j]));
-        const glm::vec3 nearest(n.x >= 0.0f ? b.lo.x : b.hi.x, n.y >= 0.0f ? b.lo.y : b.hi.y,
-                                n.z >= 0.0f ? b.lo.z : b.hi.z);
-        if (glm::dot(n, eye - nearest) >= -1e-5f * glm::length(n) * scale) return false;
-    }
-    return true;
-}
-
-// Points of cluster k whose radius bound times `stretch` passes `threshold`: the bounds are
-// non-increasing along the cluster, so the kept points are a prefix.
-uint32_t cut_length(const PointClusters& c, uint32_t k, const float* bound, float stretch,
-                    float threshold) {
-    const float* first = bound + c.point_begin[k];
-    const float* last = bound + c.point_begin[k + 1];
-    const float* cut =
-        std::partition_point(first, last, [&](float r) { return r * stretch > threshold; });
-    return uint32_t(cut - first);
-}
-
-// The largest stretch over the triangles cluster k's points and neighbours lie on, at least 1
-// (compressed radii still draw no dot past the cut), with a margin: kAreaMargin for the area
-// measure (bending between neighbours' triangles, which no triangle's area shows), 2% for
-// rounding on the edge ratios.
-constexpr float kAreaMargin = 1.1f;
-float cluster_stretch(const PointClusters& c, uint32_t k, const float* stretch, float margin) {
-    float s = 1.0f;
-    for (uint32_t j = c.reach_begin[k]; j < c.reach_begin[k + 1]; ++j)
-        s = std::max(s, stretch[c.reach[j]]);
-    return s * margin;
-}
-
-// The largest ink the size rule can ask for where lighting is at least `lit` (the ink table's
-// entries from lit's step up, so whatever shape the tone curve gives the table).
-struct InkBound {
-    float from[InkTable::kSteps + 2];
-    explicit InkBound(const SizeParams& params) {
-        const InkTable table(params);
-        from[InkTable::kSteps + 1] = 0.0f;
-        for (int i = InkTable::kSteps; i >= 0; --i) from[i] = std::max(from[i + 1], table.ink[i]);
-    }
-    float at(float lit) const {
-        const int i = lit > 0.0f ? std::min(int(lit * InkTable::kSteps), InkTable::kSteps) : 0;
-        return from[i];
-    }
-};
-
-// The least lighting (runtime/stipple_size.h's lighting()) at any point of cluster k: a point's
-// normal is a blend of the vertex normals with weights >= 0, so its N.L per light is at least
-// the least N.L of the unit vertex normals (when that is >= 0). 0 for clusters with
-// double-sided triangles (their normals turn toward the eye).
-float least_lighting(const PointClusters& c, uint32_t k, const float* normals,
-                     const SizeParams& params) {
-    if (!c.single_sided[k]) return 0.0f;
-    float lit = params.ambient;
-    for (int l = 0; l < params.light_count; ++l) {
-        float least = 1.0f;
-        for (uint32_t j = c.vertex_begin[k]; j < c.vertex_begin[k + 1] && least > 0.0f; ++j) {
-            const glm::vec3 n = glm::make_vec3(vertex(normals, c.vertices[j]));
-            const float len = glm::length(n);
-            least =
-                len > 0.0f ? std::min(least, glm::dot(n, params.light_direction[l]) / len) : 0.0f;
-        }
-        lit += params.light_intensity[l] * std::max(least - 1e-4f, 0.0f);
-    }
-    return std::min(lit, 1.0f);
-}
-
-// Radius (object units) per unit of clip w below which the size rule gives size 0 for ink at
-// most `ink`: region r^2 (focal / w)^2 N.V <= dot area / ink, with N.V <= 1.
-float cut_per_w(const SizeParams& params, float focal, float ink) {
-    if (!(ink > 0.0f)) return 1e30f;
-    const float dot_area = 0.785398163f * params.max_point_size * params.max_point_size;
-    return 0.99f * std::sqrt(dot_area / (kRegionPerRadiusSquared * ink)) / focal;
-}
-
-// The points of a bit set, ascending.
-uint32_t list_bits(const uint64_t* bits, uint32_t words, uint32_t* out) {
-    uint32_t n = 0;
-    for (uint32_t w = 0; w < words; ++w)
-        for (uint64_t b = bits[w]; b; b &= b - 1) out[n++] = w * 64 + uint32_t(__builtin_ctzll(b));
-    return n;
-}
-
-void set_bit(uint64_t* bits, uint32_t i) {
-    bits[i >> 6] |= uint64_t(1) << (i & 63);
-}
-
-// The relevant neighbours of the run points join the placed set, so Alg. 6.4 reads this
-// frame's positions.
-void place_closure(PointClusters* c, const PointsView& p) {
-    std::copy(c->run_bits.get(), c->run_bits.get() + c->word_count, c->placed_bits.get());
-    for (uint32_t j = 0; j < c->run_count; ++j) {
-        const uint32_t i = c->run[j];
-        for (uint32_t e = p.neighbour_offsets[i]; e < p.neighbour_offsets[i + 1]; ++e)
-            set_bit(c->placed_bits.get(), p.neighbours[e]);
-    }
-    c->placed_count = list_bits(c->placed_bits.get(), c->word_count, c->placed.get());
-}
-
-// Whether the first `keep` points of cluster k (ascending) reach point index `from`.
-bool cut_reaches(const PointClusters& c, uint32_t k, uint32_t keep, uint32_t from) {
-    return keep > 0 && c.order[c.point_begin[k] + keep - 1] >= from;
-}
-
-// How many of cluster k's points can draw this frame (0: culled), counted in *s.
-uint32_t cluster_keep(PointClusters* c, uint32_t k, const LodFrame& f, bool stretches, float focal,
-                      const InkBound& ink, LodStats* s) {
-    const SizeParams& params = *f.params;
-    const glm::vec2 margin(2.0f / float(std::max(f.viewport_width, 1)),
-                           2.0f / std::max(params.viewport_height, 1.0f));
-    const Box b = cluster_box(*c, k, f.vertex_positions);
-    float w_min;
-    const bool outside = outside_frustum(b, params.view_projection, margin, &w_min);
-    if (c->single_sided[k] && faces_away(*c, k, b, f.vertex_normals, params.eye)) {
-        ++s->culled_back;
-        return 0;
-    }
-    const uint32_t total = c->point_begin[k + 1] - c->point_begin[k];
-    if (outside && !cut_reaches(*c, k, total, f.size_from)) {
-        ++s->culled_frustum;
-        return 0;
-    }
-    if (!(w_min > 0.0f)) return total;
-    const float lit = least_lighting(*c, k, f.vertex_normals, params);
-    const float threshold = cut_per_w(params, focal, ink.at(lit)) * w_min;
-    uint32_t keep;
-    if (!f.relevance_update)  // the rest-pose radii as they are
-        keep = cut_length(*c, k, c->rest_bound.get(), 1.0f, threshold);
-    else if (!stretches)  // a static mesh: the bind radii
-        keep = std::max(cut_length(*c, k, c->bound.get(), 1.0f, threshold),
-                        cut_length(*c, k, c->line_bound.get(), 1.0f, threshold));
-    else
-        keep =
-            std::max(cut_length(*c, k, c->bound.get(),
-                                cluster_stretch(*c, k, c->stretch.get(), kAreaMargin), threshold),
-                     cut_length(*c, k, c->line_bound.get(),
-                                cluster_stretch(*c, k, c->edge_stretch.get(), 1.02f), threshold));
-    s->cut += keep < total;
-    if (outside && !cut_reaches(*c, k, keep, f.size_from)) {  // the cut ends before size_from
-        ++s->culled_frustum;
-        return 0;
-    }
-    return keep;
-}
-
-}  // namespace
-
-void point_clusters_select(PointClusters* c, const Asset& asset, const LodFrame& f) {
-    const SizeParams& params = *f.params;
-    const bool stretches = c->deforming && f.relevance_update;
-    if (stretches) triangle_stretch(c, asset.mesh, f.vertex_positions);
-    const float focal = focal_pixels(params);
-    const InkBound ink(params);
-    LodStats s;
-    s.clusters = c->cluster_count;
-    uint64_t* bits = c->run_bits.get();
-    std::fill(bits, bits + c->word_count, uint64_t(0));
-    for (uint32_t k = 0; k < c->cluster_count; ++k) {
-        const uint32_t keep = cluster_keep(c, k, f, stretches, focal, ink, &s);
-        for (uint32_t j = c->point_begin[k]; j < c->point_begin[k] + keep; ++j)
-            set_bit(bits, c->order[j]);
-    }
-    for (uint32_t j = 0; j < c->forced_count; ++j) set_bit(bits, c->forced[j]);
-    c->run_count = list_bits(bits, c->word_count, c->run.get());
-    place_closure(c, asset.points);
-    s.points_run = c->run_count;
-    s.points_placed = c->placed_count;
-    c->stats = s;
-}
-
-void point_clusters_clear_sizes(const PointClusters& c, float* size) {
-    for (uint32_t j = 0; j < c.run_count; ++j) size[c.run[j]] = 0.0f;
 }
 
 }  // namespace stipple

@@ -54,20 +54,42 @@ struct PointClusters {
     Buffer<float> bound, line_bound, rest_bound;
     Buffer<uint32_t> vertex_begin, vertices;  // per cluster: its triangles' vertices
     Buffer<uint32_t> reach_begin, reach;  // per cluster: triangles its points and neighbours lie on
-    Buffer<uint8_t> single_sided;         // per cluster: 1 if back-face culling may skip it
-    bool deforming = false;               // skinned or morphed: stretch is measured
-    Buffer<float> bind_gram;              // deforming: 3 per triangle (e1.e1, e1.e2, e2.e2)
-    Buffer<float> stretch, edge_stretch;  // deforming, per frame: per triangle (area, edges)
-    Buffer<uint32_t> forced;              // points run every frame (paintstroke roots)
+    // Deforming: per cluster, reach[reach_begin[k] .. reach_split[k]) are the triangles with a
+    // non-degenerate bind pose, the rest degenerate (their area stretch is the edge stretch).
+    Buffer<uint32_t> reach_split;
+    Buffer<uint8_t> single_sided;  // per cluster: 1 if back-face culling may skip it
+    bool deforming = false;        // skinned or morphed: stretch is measured
+    Buffer<float> bind_gram;       // deforming: 3 per triangle (e1.e1, e1.e2, e2.e2)
+    // Deforming, per frame, per triangle: the squares of the stretches before their roots (the
+    // roots are monotonic, so a cluster takes the largest square and one root): area_ratio the
+    // posed / bind squared area (its fourth root is the area stretch), edge_ratio the largest
+    // squared edge ratio (its square root is the edge stretch).
+    Buffer<float> area_ratio, edge_ratio;
+    // Along `order`: the relevant neighbours of order[j] that the cluster's first j + 1 points
+    // do not already hold (other clusters' points, finer points of its own), so the placed set
+    // of a prefix is the prefix plus these (closure_begin: point_count + 1 offsets).
+    Buffer<uint32_t> closure_begin, closure;
+    Buffer<uint32_t> forced;  // points run every frame (paintstroke roots)
     uint32_t forced_count = 0;
     // Per frame: the points run (placed, relevance, sized) and the points placed (the run ones
     // and the neighbours they read), both ascending; bit sets of both (64 points a word).
+    // (Ascending beats cluster by cluster: measured on the horse, placing in cluster order read
+    // fewer vertex lines but scattered the writes, 1.7x slower.)
     Buffer<uint32_t> run, placed;
     uint32_t run_count = 0, placed_count = 0;
     Buffer<uint64_t> run_bits, placed_bits;
     uint32_t word_count = 0;
+    Buffer<uint32_t> rest;  // scratch list of point_count (the points outside a set)
     LodStats stats;
 };
+
+// Whether a triangle's bind pose has an area to measure its stretch against, from its bind
+// Gram entries (e1.e1, e1.e2, e2.e2); otherwise its area stretch is its edge stretch.
+inline bool bind_area_defined(const float* gram) {
+    const float a = gram[0], b = gram[1], cc = gram[2];
+    const float det = a * cc - b * b;
+    return det > 1e-6f * (a + cc) * (a + cc);
+}
 
 // Builds the clusters of `asset`'s baked points: triangles grouped by dominant joint (skinned
 // meshes) and a grid cell of their bind-pose centroid; per cluster its vertices, its reach
@@ -93,7 +115,15 @@ struct LodFrame {
 // c->placed[0 .. placed_count) (a superset) placed.
 void point_clusters_select(PointClusters* c, const Asset& asset, const LodFrame& frame);
 
+// Deforming clusters: each triangle's squared stretches (area_ratio, edge_ratio) from the bind
+// pose to `posed` (3 floats per vertex of m, the asset's mesh); point_clusters_select runs it.
+void point_clusters_stretch(PointClusters* c, const MeshView& m, const float* posed);
+
 // Sets size[i] = 0 for the points the last selection ran (before a new selection).
 void point_clusters_clear_sizes(const PointClusters& c, float* size);
+
+// Lists into c->rest, ascending, the baked points outside the last selection's placed set
+// (`placed` true) or run set (false); returns how many.
+uint32_t point_clusters_rest(PointClusters* c, bool placed);
 
 }  // namespace stipple

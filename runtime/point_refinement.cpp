@@ -180,7 +180,9 @@ Status refinement_init(RefinementMesh* r, const MeshView& mesh, const PointsView
     Buffer<float> first = make_buffer<float>(size_t(n) * 3 + 3);
     if (!longest || !first || !alloc(&r->bind_area, n) || !alloc(&r->frame, size_t(n) * 3) ||
         !alloc(&r->root_depth, n) || !alloc(&r->density, n) || !alloc(&r->phase, n) ||
-        !alloc(&r->fade, n) || !alloc(&r->vertex, mesh.vertex_count))
+        !alloc(&r->fade, n) || !alloc(&r->vertex, mesh.vertex_count) ||
+        !alloc(&r->vertex_outside, mesh.vertex_count) ||
+        !alloc(&r->vertex_need, mesh.vertex_count) || !alloc(&r->vertex_w, mesh.vertex_count))
         return make_status(StatusCode::out_of_memory,
                            "out of memory for the run-time refinement of %u triangles", n);
     // Bind-pose area and isometric frame (A at the origin, B on the x axis) per triangle.
@@ -287,6 +289,9 @@ void classify_vertices(RefinementMesh* r, const MeshView& mesh, const float* pos
                                uint32_t(c.z < -c.w) << 4 | uint32_t(c.z > c.w) << 5;
         r->vertex[i].need = n_dot_v > 0.0f ? n_dot_v * ink.at(lighting(params, n)) : 0.0f;
         r->vertex[i].need_back = n_dot_v < 0.0f ? -n_dot_v * ink.at(lighting(params, -n)) : 0.0f;
+        r->vertex_outside[i] = uint8_t(r->vertex[i].outside);
+        r->vertex_need[i] = r->vertex[i].need;
+        r->vertex_w[i] = c.w;
     }
 }
 
@@ -301,19 +306,24 @@ void refine_one_triangle(RefinementMesh* r, Traversal* s, bool stretch, uint32_t
     const MeshView& mesh = *s->mesh;
     const float* positions = s->positions;
     const uint32_t* tri = mesh.indices + size_t(t) * 3;
-    const RefinementVertex& a = r->vertex[tri[0]];
-    const RefinementVertex& b = r->vertex[tri[1]];
-    const RefinementVertex& c = r->vertex[tri[2]];
-    if (a.outside & b.outside & c.outside) return;  // off one side of the view
+    // The tests read the small per-vertex arrays (cache resident at 100k vertices), the
+    // whole RefinementVertex only where a triangle may refine.
+    const uint8_t* outside = r->vertex_outside.get();
+    if (outside[tri[0]] & outside[tri[1]] & outside[tri[2]]) return;  // off one side of the view
     const bool two_sided = s->double_sided && s->double_sided[t];
+    const float* vneed = r->vertex_need.get();
+    float need = std::max({vneed[tri[0]], vneed[tri[1]], vneed[tri[2]]});
+    if (two_sided) {
+        const RefinementVertex* v = r->vertex.get();
+        need = std::max({need, v[tri[0]].need_back, v[tri[1]].need_back, v[tri[2]].need_back});
+    }
+    if (!(need > 0.0f)) return;
     const float baked = r->density[t];
     const float first = r->phase[t] / (area * s->scale);
     const float lower =
         r->hand_over ? std::min(baked + first, kHandOverStart * r->finest_density) : baked + first;
-    float need = std::max({a.need, b.need, c.need});
-    if (two_sided) need = std::max({need, a.need_back, b.need_back, c.need_back});
-    if (!(need > 0.0f)) return;
-    const float w = std::max(std::min({a.clip.w, b.clip.w, c.clip.w}), s->near_w);
+    const float* vw = r->vertex_w.get();
+    const float w = std::max(std::min({vw[tri[0]], vw[tri[1]], vw[tri[2]]}), s->near_w);
     const float density = need * s->focal2_over_dot / (w * w);
     float stretched = density;
     if (!stretch) {

@@ -59,8 +59,12 @@ struct RefinementMesh {
     Buffer<float> phase;              // rank offset of the first extra point, (0, 1]
     Buffer<float> fade;               // per frame: size factor of the baked points here
     Buffer<RefinementVertex> vertex;  // per vertex, rewritten every frame
-    float finest_density = 0.0f;      // rho0: baked points per unit bind area, finest level
-    bool hand_over = true;            // baked points fade in close-ups (mesh domain)
+    // The same frame's outcodes, front need and clip w again, small and apart: the per-triangle
+    // tests read these (cache resident), the whole RefinementVertex only where a triangle refines.
+    Buffer<uint8_t> vertex_outside;
+    Buffer<float> vertex_need, vertex_w;
+    float finest_density = 0.0f;  // rho0: baked points per unit bind area, finest level
+    bool hand_over = true;        // baked points fade in close-ups (mesh domain)
 };
 
 // Extra points of one frame, structure of arrays. Positions/normals/radius go straight into the

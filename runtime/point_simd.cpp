@@ -59,6 +59,10 @@ void recompute_relevance_avx2(const PointsView&, const float*, const float*, con
                               const uint32_t*, uint32_t, uint32_t, float*) {}
 void size_stipples_avx2(const SizeKernelFrame&, const float*, const float*, const float*,
                         const uint32_t*, uint32_t, uint32_t, float*) {}
+uint32_t triangle_stretch_avx2(const uint32_t*, const float*, const float*, uint32_t, float*,
+                               float*) {
+    return 0;
+}
 #endif
 
 }  // namespace stipple

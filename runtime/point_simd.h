@@ -54,4 +54,9 @@ void size_stipples_avx2(const SizeKernelFrame& frame, const float* positions, co
                         const float* radius, const uint32_t* list, uint32_t begin, uint32_t end,
                         float* out_size);
 
+// point_clusters_select.cpp's per-triangle squared stretches for triangles 0 .. count - 1,
+// 8 at a time; returns how many it did (the caller runs the scalar code on the rest).
+uint32_t triangle_stretch_avx2(const uint32_t* indices, const float* posed, const float* gram,
+                               uint32_t count, float* area_ratio, float* edge_ratio);
+
 }  // namespace stipple

@@ -4,123 +4,13 @@
 #include <cstring>
 
 #include "runtime/gl_program.h"
+#include "runtime/renderer_shaders.h"
 
 namespace stipple {
 
 namespace {
 
-const char* kMeshVs = R"(#version 300 es
-layout(location = 0) in vec3 a_position;
-uniform mat4 u_view_projection;
-uniform float u_depth_bias;
-void main() {
-    gl_Position = u_view_projection * vec4(a_position, 1.0);
-    gl_Position.z += u_depth_bias * gl_Position.w;
-}
-)";
-
-// The mesh pass's fragment shader with the depth copy (RendererConfig::depth_copy) and
-// without it: no second output to compute when there is nowhere to write it.
-const char* kMeshFs = R"(#version 300 es
-precision highp float;
-uniform vec4 u_paper;
-layout(location = 0) out vec4 o_color;
-layout(location = 1) out vec4 o_depth;
-void main() {
-    o_color = vec4(u_paper.rgb, 1.0);
-    o_depth = vec4(gl_FragCoord.z);
-}
-)";
-
-const char* kMeshFsNoCopy = R"(#version 300 es
-precision highp float;
-uniform vec4 u_paper;
-layout(location = 0) out vec4 o_color;
-void main() { o_color = vec4(u_paper.rgb, 1.0); }
-)";
-
-// Each dot is a disc with a one-pixel linear antialiasing ramp centred on its edge; such a
-// disc of radius R lays down pi (R^2 + 1/12) of ink, not pi R^2. So the disc is drawn with
-// R^2 = r^2 - 1/12 for the wanted radius r, and dots too small for that are drawn with
-// R = 0.5 and proportionally less ink: every diameter d lays down exactly pi (d/2)^2, and tone
-// is not quantised (or inflated, by up to 33% for sub-pixel dots) by pixels.
-// Visibility is decided once per dot, at its centre, against the mesh pass's depth (read
-// from the depth texture in the vertex shader): a dot is drawn whole or not at all. A per-
-// fragment depth test would clip each sprite by the surface curving toward the viewer around
-// it and lose up to 16% of the ink on small objects (measured: teapot at 2,200 px, tone 0.3).
-const char* kPointVs = R"(#version 300 es
-layout(location = 0) in vec3 a_position;
-layout(location = 1) in float a_size;
-layout(location = 2) in vec4 a_colour;
-uniform mat4 u_view_projection;
-uniform highp sampler2D u_depth;
-uniform int u_see_through;
-out float v_radius;
-out float v_ink_scale;
-flat out vec3 v_colour;
-void cull() {
-    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: not rasterised
-    gl_PointSize = 1.0;
-    v_radius = 0.0;
-    v_ink_scale = 0.0;
-    v_colour = vec3(0.0);
-}
-void main() {
-    if (a_size <= 0.0) {
-        cull();
-        return;
-    }
-    gl_Position = u_view_projection * vec4(a_position, 1.0);
-    vec3 ndc = gl_Position.xyz / gl_Position.w;
-    ivec2 size = textureSize(u_depth, 0);
-    ivec2 pixel = ivec2(floor((ndc.xy * 0.5 + 0.5) * vec2(size)));
-    if (gl_Position.w <= 0.0 || any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, size))) {
-        cull();
-        return;
-    }
-    float mesh = texelFetch(u_depth, pixel, 0).r;
-    // Off the object (unless transparent parts let it through), or hidden.
-    if ((mesh >= 1.0 && u_see_through == 0) || ndc.z * 0.5 + 0.5 > mesh + 1e-5) {
-        cull();
-        return;
-    }
-    float wanted = 0.25 * a_size * a_size;  // r^2
-    float r = sqrt(max(wanted - 1.0 / 12.0, 0.25));
-    v_radius = r;
-    v_ink_scale = min(wanted / (r * r + 1.0 / 12.0), 1.0);
-    gl_PointSize = 2.0 * r + 1.0;
-    v_colour = a_colour.rgb;
-}
-)";
-
-const char* kPointFs = R"(#version 300 es
-precision highp float;
-in float v_radius;
-in float v_ink_scale;
-flat in vec3 v_colour;
-uniform vec4 u_ink;
-uniform int u_use_colour;
-layout(location = 0) out vec4 o_color;
-void main() {
-    float d = length(gl_PointCoord - vec2(0.5)) * (2.0 * v_radius + 1.0);
-    float coverage = clamp(v_radius + 0.5 - d, 0.0, 1.0) * v_ink_scale;
-    if (coverage <= 0.0) discard;
-    o_color = vec4(u_use_colour == 1 ? v_colour : u_ink.rgb, coverage);
-}
-)";
-
-const char* kLineVs = R"(#version 300 es
-layout(location = 0) in vec3 a_position;
-uniform mat4 u_view_projection;
-void main() { gl_Position = u_view_projection * vec4(a_position, 1.0); }
-)";
-
-const char* kLineFs = R"(#version 300 es
-precision highp float;
-uniform vec4 u_ink;
-layout(location = 0) out vec4 o_color;
-void main() { o_color = vec4(u_ink.rgb, 1.0); }
-)";
+using namespace shaders;
 
 GLuint renderbuffer(const GlApi& gl, GLenum format, int w, int h) {
     GLuint rb = 0;
@@ -443,7 +333,7 @@ void renderer_draw_dots(Renderer* r, const glm::mat4& view_projection, const flo
     begin_ink_pass(r, r->point_program, r->point_vp, r->point_ink, view_projection);
     const bool own_colours = colours && r->point_colour_vbo;
     if (own_colours) gl.Uniform1i(r->point_use_colour, 1);
-    gl.Disable(GL_DEPTH_TEST);  // each dot's visibility is tested at its centre (kPointVs)
+    gl.Disable(GL_DEPTH_TEST);  // each dot's visibility: kPointVs
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_2D, r->depth_tex);
     gl.Uniform1i(r->point_depth, 0);
@@ -570,7 +460,7 @@ void renderer_draw_points_from(Renderer* r, const glm::mat4& view_projection, GL
     const GlApi& gl = r->gl;
     gl.BindFramebuffer(GL_FRAMEBUFFER, r->ink_fbo);
     begin_ink_pass(r, r->point_program, r->point_vp, r->point_ink, view_projection);
-    gl.Disable(GL_DEPTH_TEST);  // each dot's visibility is tested at its centre (kPointVs)
+    gl.Disable(GL_DEPTH_TEST);  // each dot's visibility: kPointVs
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_2D, r->depth_tex);
     gl.Uniform1i(r->point_depth, 0);

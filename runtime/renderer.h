@@ -1,7 +1,9 @@
 // GLES 3 stipple renderer (thesis §3.2): the mesh is drawn as a plain "paper" coloured depth
 // pass pushed slightly behind the surface, then every point is drawn as a round,
-// antialiased dot of its computed diameter, whole when its centre passes the depth test
-// against that pass (tested in the vertex shader on the depth texture), not at all otherwise.
+// antialiased dot of its computed diameter, whole when it passes the depth test against that
+// pass at its centre pixel or against the depth interpolated from the 2x2 texels around its
+// centre (in the vertex shader, on the depth texture; runtime/renderer_shaders.h), not at all
+// otherwise.
 // Looks (runtime/style.h, renderer_draw_fill / renderer_draw_dots): a toon or opaque-parts-only
 // mesh pass, dots in their own colours, dots that see through transparent parts.
 // The mesh pass culls the back faces of single-sided triangles (double-sided ones are drawn

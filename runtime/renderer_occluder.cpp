@@ -15,6 +15,7 @@
 #include "runtime/asset.h"
 #include "runtime/gl_program.h"
 #include "runtime/renderer.h"
+#include "runtime/renderer_shaders.h"
 
 namespace stipple {
 
@@ -24,7 +25,7 @@ namespace {
 // bind pose; skinning bends the surface between the occluder's vertices).
 constexpr float kOccluderPushScale = 1.0f;
 
-// The mesh pass's vertex shader (runtime/renderer.cpp kMeshVs) with the push along the view
+// The mesh pass's vertex shader (runtime/renderer_shaders.h kMeshVs) with the push along the view
 // ray. u_eye: the eye (w = 1), or for a parallel projection the direction away from it (w = 0).
 const char* kOccluderVs = R"(#version 300 es
 layout(location = 0) in vec3 a_position;
@@ -39,24 +40,6 @@ void main() {
     gl_Position = u_view_projection * vec4(p, 1.0);
     gl_Position.z += u_depth_bias * gl_Position.w;
 }
-)";
-
-const char* kOccluderFs = R"(#version 300 es
-precision highp float;
-uniform vec4 u_paper;
-layout(location = 0) out vec4 o_color;
-layout(location = 1) out vec4 o_depth;
-void main() {
-    o_color = vec4(u_paper.rgb, 1.0);
-    o_depth = vec4(gl_FragCoord.z);
-}
-)";
-
-const char* kOccluderFsNoCopy = R"(#version 300 es
-precision highp float;
-uniform vec4 u_paper;
-layout(location = 0) out vec4 o_color;
-void main() { o_color = vec4(u_paper.rgb, 1.0); }
 )";
 
 // The eye of `vp` in the mesh's space: the point whose clip coordinates are (0, 0, k, 0); for
@@ -85,7 +68,7 @@ Status renderer_init_occluder(Renderer* r) {
     if (c.occluder_triangle_count == 0 || !c.occluder_indices) return {};
     Status st;
     r->occluder_program = link_gl_program(
-        gl, kOccluderVs, c.depth_copy ? kOccluderFs : kOccluderFsNoCopy, "occluder", &st);
+        gl, kOccluderVs, c.depth_copy ? shaders::kMeshFs : shaders::kMeshFsNoCopy, "occluder", &st);
     if (!r->occluder_program) return st;
     const GLuint p = r->occluder_program;
     r->occluder_vp = gl.GetUniformLocation(p, "u_view_projection");

@@ -9,12 +9,14 @@
 # its masks from a second "paper" frame, --tone 0 --background 808080, same camera).
 # MEASURE=path/to/stipple-measure (default BIN_DIR/stipple-measure); JOBS=N parallel renders
 # (default: the number of CPUs); REUSE=1 measures the renders already in OUT_DIR again
-# without baking or rendering. Every asset is baked with default options from assets/
-# (the tube from the checked-in, regenerated stretch_tube.gltf). Progress goes to stderr.
+# without baking or rendering; SMALL_YAWS=N adds table a2, zoom 0.25 from N yaws (0, 360/N,
+# ...): mean and range of the views (few-dot noise; docs/tone.md, "Small objects"). Every
+# asset is baked with default options from assets/ (the tube from the checked-in,
+# regenerated stretch_tube.gltf). Progress goes to stderr.
 set -euo pipefail
 
 if [ $# -ne 2 ] || [ "$1" = "-h" ] || [ "$1" = "--help" ]; then
-    sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'
+    sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'
     [ $# -eq 2 ] && exit 0 || exit 2
 fi
 BIN=$(cd "$1" && pwd)
@@ -54,6 +56,8 @@ BASE="--size 640x480 --no-silhouettes --no-apng"
 TUBE_VIEW="--size 960x1440 --zoom 0.4 --clip sweep --tone 0.3 --no-silhouettes --no-apng"
 SWEEP_TIMES="0 0.5 1 1.5 1.999"  # scale = 0.5 + t; the clip loops at t = 2
 SWEEP_FRAMES=150
+SMALL_YAWS=${SMALL_YAWS:-0}
+small_yaw() { awk -v k="$1" -v n="$SMALL_YAWS" 'BEGIN { printf "%g", 360 * k / n }'; }
 
 # ---- jobs: one per line, "kind<TAB>dir<TAB>asset.stip<TAB>options" ------------------------
 # ink:   the measured render (with --mask-out when the player has it);
@@ -119,6 +123,12 @@ for name in $NAMES; do
     done
     for t in $HIGH_TARGETS; do
         job ink "$R/$name/t${t}_z1" "$stip" "$BASE $cam --zoom 1 --frames 1 --tone $t"
+    done
+    for ((k = 0; k < SMALL_YAWS; ++k)); do
+        for t in $TARGETS; do
+            job ink "$R/$name/small_t${t}_y$k" "$stip" \
+                "$BASE $cam --zoom 0.25 --yaw $(small_yaw "$k") --frames 1 --tone $t"
+        done
     done
 done
 for n in 20000 100000; do
@@ -211,6 +221,29 @@ for name in $NAMES; do
     echo "$row"
 done
 
+if [ "$SMALL_YAWS" -gt 0 ]; then
+    echo
+    echo "### a2. Zoom 0.25 from $SMALL_YAWS yaws"
+    echo
+    echo "Mean darkness inside the mask at zoom 0.25, mean over the views (\`*\`: more than 10 % off the target) and the views' range."
+    echo
+    echo "| asset | 0.1 mean | 0.1 range | 0.3 mean | 0.3 range | 0.6 mean | 0.6 range |"
+    echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"
+    for name in $NAMES; do
+        row="| $name |"
+        for t in $TARGETS; do
+            values=""
+            for ((k = 0; k < SMALL_YAWS; ++k)); do
+                values="$values $(jnum "$(tone_of "$R/$name/small_t${t}_y$k")" tone)"
+            done
+            read -r mean lo hi <<< "$(echo "$values" | awk '{ lo = $1; hi = $1; s = 0;
+                for (i = 1; i <= NF; ++i) { s += $i; if ($i < lo) lo = $i; if ($i > hi) hi = $i }
+                printf "%.6f %.3f %.3f", s / NF, lo, hi }')"
+            row="$row $(mark "$mean" "$t") | $lo–$hi |"
+        done
+        echo "$row"
+    done
+fi
 echo
 echo "### b. Evenness at tone 0.3"
 echo

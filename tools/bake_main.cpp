@@ -15,6 +15,7 @@
 #include "bake/asset_writer.h"
 #include "bake/atomic_file.h"
 #include "bake/fur.h"
+#include "bake/particle_parents.h"
 #include "bake/point_hierarchy.h"
 #include "bake/scene_import.h"
 #include "bake/scene_orientation.h"
@@ -150,8 +151,9 @@ void add_stroke_options(stipple::cli::Parser& p, Options* o) {
         .text("--strokes", &o->strokes);
 }
 
-// The particle tree (--particles): the runtime's own rule (runtime/particle_tree.h) over the
-// points' bind-pose positions, so a stored tree is the one the runtime would build.
+// The particle tree (--particles): simplify's own merge record (bake/particle_parents.h), else
+// the runtime's own rule (runtime/particle_tree.h) over the points' bind-pose positions, so a
+// stored tree is the one the runtime would build.
 std::vector<uint32_t> particle_tree(const stipple::bake::RawScene& scene,
                                     const stipple::bake::PointHierarchy& points) {
     const size_t n = points.size();
@@ -164,6 +166,8 @@ std::vector<uint32_t> particle_tree(const stipple::bake::RawScene& scene,
                               v * scene.positions[size_t(t[1]) * 3 + k] +
                               w * scene.positions[size_t(t[2]) * 3 + k];
     }
+    if (!points.record_parent.empty())
+        return stipple::bake::merge_tree_parents(points.record_parent, bind);
     std::vector<uint32_t> parent(n);
     if (!stipple::particle_parents(uint32_t(n), bind.data(), INFINITY, parent.data()).ok())
         die("out of memory for the particle tree");

@@ -167,12 +167,11 @@ class Corpus : public ::testing::TestWithParam<CorpusAsset> {};
 // 0.6), and a target of 0.9 draws at least 0.8. Values printed with ~ come from fewer than
 // 400 dots' worth of ink and are checked within their shot noise (see tolerance) only: at
 // zoom 0.25 a target of 0.1 is 30-50 dots, +-16% from one view to the next (horse, 12 yaws:
-// 0.074-0.117 of ink seen per mask pixel), and seen ink is also 3-10% low on average there
-// (horse 0.091, Spot 0.097, teapot 0.090 over 12 yaws) although the size rule lays down the
-// same total ink as at zoom 1 (within 1%): with pixels 4x wider in world units, the one-
-// pixel visibility test drops 2.6-6.5% of the dots that zoom 1 shows (centre off the mesh's
-// coverage at the outline, or on a nearer part), which the 2 px inset only partly leaves out
-// (docs/tone.md, "Small objects").
+// 0.074-0.117 of ink seen per mask pixel). With a centre-pixel visibility test seen ink was
+// also 3-11% low there; the dots shader now also passes a dot against the depth interpolated
+// around its centre (runtime/renderer_shaders.h), which brings the ink per mask pixel within
+// 6% of zoom 1. What remains low at 0.1 inside the 2 px inset is the coarsest dots crowding
+// the outline band (docs/tone.md, "Small objects"; tests/frames/test_tone_small.cpp).
 TEST_P(Corpus, ToneHoldsAtEveryZoom) {
     const CorpusAsset& a = GetParam();
     Stage stage;

@@ -156,7 +156,18 @@ TEST(MeasureCli, PlayerMaskOutMatchesThePaperFrame) {
         std::vector<m::Dot> dots;
         ASSERT_TRUE(m::load_dots_csv(dir + "/ink/dots_" + std::string(n) + ".csv", &dots, &error));
         ASSERT_FALSE(dots.empty());
-        EXPECT_EQ(m::evenness(dots, mask).dots, dots.size()) << n;
+        // Every drawn dot has one of the 2x2 pixels around its centre on the mask (the dots
+        // pass's test, runtime/renderer_shaders.h; 0.51: the CSV rounds to 1/100 px), and
+        // nearly all have their centre pixel on it (those the measures count).
+        size_t near_mask = 0;
+        for (const m::Dot& d : dots) {
+            bool on = false;
+            for (float dy : {-0.51f, 0.51f})
+                for (float dx : {-0.51f, 0.51f}) on = on || mask.at(int(d.x + dx), int(d.y + dy));
+            near_mask += on;
+        }
+        EXPECT_EQ(near_mask, dots.size()) << n;
+        EXPECT_GE(double(m::evenness(dots, mask).dots), 0.95 * double(dots.size())) << n;
     }
     nlohmann::json j = run_json("frames " + dir + "/ink");
     EXPECT_EQ(j["frames"].size(), 2u);

@@ -1,0 +1,314 @@
+// The CPU point stages as a frame runs them (issue 9, "What it must show"): pipeline_update
+// (pose, level-of-detail selection, place, relevance, refinement, size, silhouettes; no draw)
+// at 1280x720 on assets given on the command line, each on 1 and on 2 threads, in interleaved
+// rounds (min and median over rounds of the ms per frame, each round kFrames frames of the
+// clip at 30 fps). Beside each, the memory-bandwidth bound of the bytes the point stages touch
+// (place: the placed points, relevance and size: the run points; runtime/point_clusters.h),
+// from a memcpy measured in the same rounds, and the ns per run point.
+//   stipple_bench_point_stages_frame [--rounds N] [--yaw DEG] NAME=FILE.stip[:CLIP] ...
+// Without assets it bakes CesiumMan at 100k points in memory. The thread counts of one asset
+// share one asset and run the same frames; their stages are byte-identical (point_stages.h).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bench/bench_asset.h"
+#include "platform/headless_context.h"
+#include "runtime/frame_pipeline.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr int kFrames = 30;
+
+struct Series {
+    std::vector<double> v;
+    double min() const { return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end()); }
+    double median() const {
+        if (v.empty()) return 0.0;
+        std::vector<double> s = v;
+        std::sort(s.begin(), s.end());
+        return s.size() % 2 ? s[s.size() / 2] : 0.5 * (s[s.size() / 2 - 1] + s[s.size() / 2]);
+    }
+};
+
+enum Column { kPose, kPlace, kRelevance, kRefine, kSize, kLines, kPoints, kUpdate, kColumns };
+const char* kColumnNames[kColumns] = {
+    "pose",       "place+select",         "relevance", "refine", "size+compact",
+    "silhouette", "points (place..size)", "update"};
+
+struct Run {
+    std::unique_ptr<stipple::Pipeline> pipeline;
+    int threads = 1;
+    Series ms[kColumns];
+    Series ns_per_run_point;                               // kPoints per run point
+    double run = 0, placed = 0, neighbours = 0, dots = 0;  // per frame, last round
+    double worker_ranges =
+        0;  // per frame, over every round: ranges the worker (not the caller) ran
+};
+
+struct Case {
+    std::string name, file, clip_name;
+    stipple::Asset asset;
+    int clip = 0;
+    Run runs[2];                              // 1 and 2 threads
+    std::unique_ptr<stipple::Pipeline> full;  // level of detail off: the check
+    int differing = -1;                       // frames whose drawn dots differ from `full`
+};
+
+bool parse_case(const char* arg, Case* c) {
+    const char* eq = std::strchr(arg, '=');
+    if (!eq) return false;
+    c->name.assign(arg, eq);
+    c->file = eq + 1;
+    const size_t colon = c->file.rfind(':');
+    if (colon != std::string::npos && c->file.find(".stip", colon) == std::string::npos) {
+        c->clip_name = c->file.substr(colon + 1);
+        c->file.resize(colon);
+    }
+    return stipple::load_asset_file(c->file.c_str(), &c->asset).ok();
+}
+
+bool init_runs(Case* c, const stipple::GlApi& gl, float yaw) {
+    c->clip = std::max(0, stipple::find_clip(c->asset, c->clip_name.c_str()));
+    for (int k = 0; k < 2; ++k) {
+        stipple::FrameConfig config;
+        config.width = 1280;
+        config.height = 720;
+        config.relevance_update = true;
+        config.yaw_degrees = yaw;
+        config.threads = k + 1;
+        Run& r = c->runs[k];
+        r.threads = k + 1;
+        r.pipeline = std::make_unique<stipple::Pipeline>();
+        if (!stipple::pipeline_init(r.pipeline.get(), c->asset, gl, config).ok()) return false;
+        if (k > 0) continue;
+        config.lod = false;
+        c->full = std::make_unique<stipple::Pipeline>();
+        if (!stipple::pipeline_init(c->full.get(), c->asset, gl, config).ok()) return false;
+    }
+    return true;
+}
+
+bool same_dots(const stipple::Pipeline& a, const stipple::Pipeline& b) {
+    const size_t n = a.points_drawn;
+    return n == b.points_drawn &&
+           std::memcmp(a.draw_positions.get(), b.draw_positions.get(), n * 12) == 0 &&
+           std::memcmp(a.draw_sizes.get(), b.draw_sizes.get(), n * 4) == 0;
+}
+
+// The frames of a round with level of detail on (1 thread) against the full stages: the
+// drawn dots (positions, sizes, order) must be the same bytes (docs/lod.md).
+void check_frames(Case* c) {
+    c->differing = 0;
+    for (int k = 0; k < kFrames; ++k) {
+        stipple::AnimationState state;
+        state.clip = c->clip;
+        state.time = float(k) / 30.0f;
+        stipple::pipeline_update(c->runs[0].pipeline.get(), state, nullptr);
+        stipple::pipeline_update(c->full.get(), state, nullptr);
+        c->differing += !same_dots(*c->runs[0].pipeline, *c->full);
+    }
+}
+
+// Relevant neighbours of the run points (relevance reads each one's position).
+double run_neighbours(const stipple::Pipeline& p) {
+    const stipple::PointsView& pts = p.asset->points;
+    const stipple::PointClusters& c = p.clusters;
+    if (!p.config.lod || c.cluster_count == 0) return double(pts.neighbour_count);
+    double n = 0;
+    for (uint32_t j = 0; j < c.run_count; ++j)
+        n += pts.neighbour_offsets[c.run[j] + 1] - pts.neighbour_offsets[c.run[j]];
+    return n;
+}
+
+void run_frames(Case* c, Run* r) {
+    stipple::Pipeline* p = r->pipeline.get();
+    stipple::StageTimes t;
+    double run = 0, placed = 0, neighbours = 0, dots = 0;
+    const uint64_t ranges = stipple::thread_pool_worker_ranges(&p->pool);
+    const Clock::time_point start = Clock::now();
+    for (int k = 0; k < kFrames; ++k) {
+        stipple::AnimationState state;
+        state.clip = c->clip;
+        state.time = float(k) / 30.0f;
+        stipple::pipeline_update(p, state, &t);
+        const bool lod = p->config.lod && p->clusters.cluster_count > 0;
+        run += lod ? p->clusters.run_count : p->asset->points.point_count;
+        placed += lod ? p->clusters.placed_count : p->asset->points.point_count;
+        neighbours += run_neighbours(*p);
+        dots += p->points_drawn;
+    }
+    const double update = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    const double f = 1.0 / kFrames;
+    r->worker_ranges += double(stipple::thread_pool_worker_ranges(&p->pool) - ranges) * f;
+    const double cols[kColumns] = {(t.sample + t.skin) * f,
+                                   t.place * f,
+                                   t.relevance * f,
+                                   t.refine * f,
+                                   t.size * f,
+                                   t.silhouette * f,
+                                   (t.place + t.relevance + t.refine + t.size) * f,
+                                   update * f};
+    for (int k = 0; k < kColumns; ++k) r->ms[k].v.push_back(cols[k]);
+    r->run = run * f, r->placed = placed * f, r->neighbours = neighbours * f, r->dots = dots * f;
+    r->ns_per_run_point.v.push_back(cols[kPoints] * 1e6 / std::max(r->run, 1.0));
+}
+
+// Bytes the point stages stream per frame: place reads host, u, v and writes position and
+// normal of each placed point; relevance reads offset, scale and position of each run point,
+// index and position of each neighbour, writes the radius; size reads position, normal and
+// radius, writes the size (the posed mesh's vertices are cache resident: not counted).
+double stage_bytes(const Run& r) {
+    return r.placed * (12 + 24) + r.run * (4 + 4 + 12 + 4) + r.neighbours * (4 + 12) +
+           r.run * (12 + 12 + 4 + 4);
+}
+
+// memcpy bandwidth (read + write bytes per ns) over `bytes`, best of 5 copies.
+double bandwidth(std::vector<char>* src, std::vector<char>* dst) {
+    double best = 0;
+    for (int k = 0; k < 5; ++k) {
+        const Clock::time_point t0 = Clock::now();
+        std::memcpy(dst->data(), src->data(), src->size());
+        const double ns = std::chrono::duration<double, std::nano>(Clock::now() - t0).count();
+        best = std::max(best, 2.0 * double(src->size()) / ns);
+        std::swap(*src, *dst);
+    }
+    return best;
+}
+
+std::string mm(const Series& s) {
+    char text[48];
+    std::snprintf(text, sizeof(text), "%.3f / %.3f", s.min(), s.median());
+    return text;
+}
+
+void print_stages(const std::vector<Case>& cases) {
+    std::printf("| asset | threads |");
+    for (const char* name : kColumnNames) std::printf(" %s |", name);
+    std::printf(" points run (placed) | dots |\n| --- | ---: |");
+    for (int k = 0; k < kColumns; ++k) std::printf(" ---: |");
+    std::printf(" ---: | ---: |\n");
+    for (const Case& c : cases)
+        for (const Run& r : c.runs) {
+            std::printf("| %s | %d |", c.name.c_str(), r.threads);
+            for (const Series& s : r.ms) std::printf(" %s |", mm(s).c_str());
+            std::printf(" %.0f (%.0f) | %.0f |\n", r.run, r.placed, r.dots);
+        }
+}
+
+void print_bounds(const std::vector<Case>& cases, const Series& bw) {
+    std::printf(
+        "\nmemcpy: best %.2f, median %.2f GB/s (read + write). Point stages (place, "
+        "relevance, refine, size, with the selection) per run point against the bound of the "
+        "bytes they stream:\n\n",
+        *std::max_element(bw.v.begin(), bw.v.end()), bw.median());
+    std::printf(
+        "| asset | bytes per frame | bound ms | 1 thread ms (min / median) | 1T / bound | "
+        "ns per run point 1T | bound ns per run point | 2 threads ms | 1T / 2T (min, median) |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    const double best = *std::max_element(bw.v.begin(), bw.v.end());
+    for (const Case& c : cases) {
+        const Run& one = c.runs[0];
+        const Run& two = c.runs[1];
+        const double bytes = stage_bytes(one), bound_ms = bytes / best * 1e-6;
+        std::printf("| %s | %.2f MB | %.3f | %s | %.1f | %.1f / %.1f | %.1f | %s | %.2f, %.2f |\n",
+                    c.name.c_str(), bytes * 1e-6, bound_ms, mm(one.ms[kPoints]).c_str(),
+                    one.ms[kPoints].min() / bound_ms, one.ns_per_run_point.min(),
+                    one.ns_per_run_point.median(), bytes / best / std::max(one.run, 1.0),
+                    mm(two.ms[kPoints]).c_str(), one.ms[kPoints].min() / two.ms[kPoints].min(),
+                    one.ms[kPoints].median() / two.ms[kPoints].median());
+    }
+}
+
+void print_ratios(const std::vector<Case>& cases) {
+    if (cases.size() < 2) return;
+    std::printf("\nAgainst %s (1 thread, min / median):\n\n", cases[0].name.c_str());
+    std::printf("| asset | points (place..size) | update |\n| --- | ---: | ---: |\n");
+    const Run& base = cases[0].runs[0];
+    for (size_t k = 1; k < cases.size(); ++k) {
+        const Run& r = cases[k].runs[0];
+        std::printf("| %s | %.2f / %.2f | %.2f / %.2f |\n", cases[k].name.c_str(),
+                    r.ms[kPoints].min() / base.ms[kPoints].min(),
+                    r.ms[kPoints].median() / base.ms[kPoints].median(),
+                    r.ms[kUpdate].min() / base.ms[kUpdate].min(),
+                    r.ms[kUpdate].median() / base.ms[kUpdate].median());
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int rounds = 7;
+    float yaw = 0.0f;
+    std::vector<Case> cases;
+    cases.reserve(size_t(argc));
+    for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--rounds") == 0 && i + 1 < argc) {
+            rounds = std::max(1, std::atoi(argv[++i]));
+        } else if (std::strcmp(argv[i], "--yaw") == 0 && i + 1 < argc) {
+            yaw = float(std::atof(argv[++i]));
+        } else {
+            cases.emplace_back();
+            if (!parse_case(argv[i], &cases.back())) {
+                std::fprintf(stderr, "cannot load %s (NAME=FILE.stip[:CLIP])\n", argv[i]);
+                return 1;
+            }
+        }
+    }
+    if (cases.empty()) {
+        cases.emplace_back();
+        cases[0].name = "CesiumMan 100k";
+        if (!stipple::bench::bake_asset("CesiumMan/CesiumMan.glb", 100000, &cases[0].asset))
+            return 1;
+    }
+    stipple::platform::HeadlessConfig hc;
+    hc.width = 1280;
+    hc.height = 720;
+    stipple::platform::HeadlessContext context;
+    stipple::GlApi gl;
+    if (!stipple::platform::create_headless_context(hc, &context).ok() ||
+        !stipple::load_gl_api(stipple::platform::proc_loader(context), &gl).ok())
+        return 1;
+    for (Case& c : cases) {
+        if (!init_runs(&c, gl, yaw)) return 1;
+        check_frames(&c);
+    }
+    std::vector<char> src(size_t(64) << 20, 1), dst(size_t(64) << 20, 2);
+    Series bw;
+    for (int round = 0; round < rounds; ++round) {
+        bw.v.push_back(bandwidth(&src, &dst));
+        for (size_t i = 0; i < cases.size(); ++i)
+            for (int k = 0; k < 2; ++k) {
+                Case& c = cases[(i + size_t(round)) % cases.size()];
+                run_frames(&c, &c.runs[(k + round) % 2]);
+            }
+    }
+    std::printf("1280x720, %d interleaved rounds of %d frames, ms per frame (min / median)\n\n",
+                rounds, kFrames);
+    print_stages(cases);
+    print_bounds(cases, bw);
+    print_ratios(cases);
+    std::printf(
+        "\nRanges the 2nd thread ran per frame (the caller runs those of a worker not "
+        "scheduled in time; ~3-4 when it always is):");
+    for (const Case& c : cases)
+        std::printf(" %s %.2f;", c.name.c_str(),
+                    c.runs[1].worker_ranges / double(c.runs[1].ms[0].v.size()));
+    std::printf("\nDrawn dots with level of detail against the full stages (%d frames):", kFrames);
+    for (const Case& c : cases)
+        std::printf(
+            " %s %s;", c.name.c_str(),
+            c.differing == 0 ? "identical" : (std::to_string(c.differing) + " differ").c_str());
+    std::printf("\n");
+    for (Case& c : cases) {
+        for (Run& r : c.runs) stipple::pipeline_destroy(r.pipeline.get());
+        stipple::pipeline_destroy(c.full.get());
+    }
+    return 0;
+}

@@ -1,0 +1,148 @@
+#include "runtime/frame_point_stages.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "runtime/double_sided.h"
+#include "runtime/point_placement.h"
+#include "runtime/point_stages.h"
+
+namespace stipple {
+
+namespace {
+
+using Clock = StageClock;
+
+// The finest quarter of the bake is where the run-time refinement takes over: extra points
+// can be drawn only where the size rule draws baked points of that region size, so while none
+// of them has a size (full views of a dense bake) the frame needs no refinement at all.
+bool hierarchy_running_out(const float* size, uint32_t baked) {
+    for (uint32_t i = baked - baked / 4; i < baked; ++i)
+        if (size[i] > 0.0f) return true;
+    return baked < 4;
+}
+
+// Thesis Alg. 6.3, 6.4 and 3.2 over every baked point.
+void full_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
+    const Asset& a = *p->asset;
+    const PointStageFrame f = point_stage_frame(p);  // threads and SIMD: runtime/point_stages.h
+    point_stage_place(&p->pool, f, nullptr, a.points.point_count);
+    face_double_sided_points(a.points.point_count, p->point_double_sided.get(),
+                             p->point_positions.get(), p->point_normals.get(), p->size_params.eye);
+    if (t) t->place += ms_since(clock);
+    const uint32_t baked = a.points.point_count;
+    if (p->config.relevance_update)
+        point_stage_relevance(&p->pool, f, nullptr, baked);
+    else
+        std::memcpy(p->radius.get(), p->rest_radius.get(), size_t(baked) * 4);
+    if (t) t->relevance += ms_since(clock);
+    point_stage_size(&p->pool, f, nullptr, baked);
+    p->lod_sizes_clear = false;
+    if (t) t->size += ms_since(clock);
+}
+
+// The same over the clusters' selection (thesis §9.1.1, runtime/point_clusters.h): the
+// points run are placed, re-scaled and sized; their neighbours only placed; every other
+// baked point keeps size 0.
+void lod_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
+    const Asset& a = *p->asset;
+    PointClusters& c = p->clusters;
+    if (p->lod_sizes_clear)
+        point_clusters_clear_sizes(c, p->size.get());
+    else
+        std::fill(p->size.get(), p->size.get() + a.points.point_count, 0.0f);
+    p->lod_sizes_clear = true;
+    LodFrame frame;
+    frame.vertex_positions = p->vertex_positions.get();
+    frame.vertex_normals = p->vertex_normals.get();
+    frame.params = &p->size_params;
+    frame.viewport_width = p->viewport_width;
+    frame.relevance_update = p->config.relevance_update;
+    const uint32_t baked = a.points.point_count;  // hierarchy_running_out's finest quarter
+    if (p->config.refinement_budget > 0) frame.size_from = baked - baked / 4;
+    point_clusters_select(&c, a, frame);
+    const uint32_t* run = c.run.get();
+    const PointStageFrame f = point_stage_frame(p);  // threads and SIMD: runtime/point_stages.h
+    point_stage_place(&p->pool, f, c.placed.get(), c.placed_count);
+    face_listed_double_sided_points(run, c.run_count, p->point_double_sided.get(),
+                                    p->point_positions.get(), p->point_normals.get(),
+                                    p->size_params.eye);
+    if (t) t->place += ms_since(clock);
+    if (p->config.relevance_update)
+        point_stage_relevance(&p->pool, f, run, c.run_count);
+    else
+        for (uint32_t j = 0; j < c.run_count; ++j) p->radius[run[j]] = p->rest_radius[run[j]];
+    if (t) t->relevance += ms_since(clock);
+    point_stage_size(&p->pool, f, run, c.run_count);
+    if (t) t->size += ms_since(clock);
+}
+
+// hierarchy_running_out over the selection: only run points can have a size.
+bool lod_running_out(const PointClusters& c, const float* size, uint32_t baked) {
+    for (uint32_t j = 0; j < c.run_count; ++j)
+        if (c.run[j] >= baked - baked / 4 && size[c.run[j]] > 0.0f) return true;
+    return baked < 4;
+}
+
+// The run-time refinement (runtime/point_refinement.h) after the baked points are sized.
+void refine_stage(Pipeline* p, bool lod, StageTimes* t, Clock::time_point* clock) {
+    const Asset& a = *p->asset;
+    const uint32_t baked = a.points.point_count;
+    RefinedPoints extra;
+    extra.capacity = p->config.refinement_budget;
+    extra.positions = p->point_positions.get() + size_t(baked) * 3;
+    extra.normals = p->point_normals.get() + size_t(baked) * 3;
+    extra.radius = p->radius.get() + baked;
+    extra.triangle = p->refined_triangle.get();
+    extra.index = p->refined_index.get();
+    if (p->refine_on_points) {  // corners are the baked points, as placed this frame
+        if (lod) {  // every corner, not only the selection (close-ups: the cut keeps most):
+            // the points the selection did not place, then those it did not turn to the eye
+            PointClusters& c = p->clusters;
+            point_stage_place(&p->pool, point_stage_frame(p), c.rest.get(),
+                              point_clusters_rest(&c, true));
+            face_listed_double_sided_points(c.rest.get(), point_clusters_rest(&c, false),
+                                            p->point_double_sided.get(), p->point_positions.get(),
+                                            p->point_normals.get(), p->size_params.eye);
+        }
+        MeshView domain = p->refinement_domain;
+        domain.positions = p->point_positions.get();
+        domain.normals = p->point_normals.get();  // double-sided ones already face the eye
+        refine_points(&p->refinement, domain, domain.positions, domain.normals, nullptr,
+                      p->size_params, p->config.relevance_update, &extra, &p->refinement_stats);
+    } else {
+        refine_points(&p->refinement, a.mesh, p->vertex_positions.get(), p->vertex_normals.get(),
+                      a.sides.triangle_double_sided, p->size_params, p->config.relevance_update,
+                      &extra, &p->refinement_stats);
+    }
+    p->refined_count = extra.count;
+    if (t) t->refine += ms_since(clock);
+    size_stipples(extra.count, extra.positions, extra.normals, extra.radius, p->size_params,
+                  p->size.get() + baked);
+    if (!lod) {
+        fade_baked_points(p->refinement, a.points, p->size.get());
+        return;
+    }
+    if (!p->refinement.hand_over) return;  // as fade_baked_points: the points domain fades none
+    const PointClusters& c = p->clusters;  // fade_baked_points over the selection
+    for (uint32_t j = 0; j < c.run_count; ++j)
+        p->size[c.run[j]] *= p->refinement.fade[a.points.host_triangle[c.run[j]]];
+}
+
+}  // namespace
+
+void pipeline_point_stages(Pipeline* p, bool lod, StageTimes* t, Clock::time_point* clock) {
+    if (lod)
+        lod_point_stages(p, t, clock);
+    else
+        full_point_stages(p, t, clock);
+    const uint32_t baked = p->asset->points.point_count;
+    // Where the baked hierarchy runs out, continue it (extra points after the baked ones).
+    p->refined_count = 0;
+    p->refinement_stats = RefinementStats();
+    if (p->config.refinement_budget > 0 && (lod ? lod_running_out(p->clusters, p->size.get(), baked)
+                                                : hierarchy_running_out(p->size.get(), baked)))
+        refine_stage(p, lod, t, clock);
+}
+
+}  // namespace stipple
