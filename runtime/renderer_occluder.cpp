@@ -21,8 +21,9 @@ namespace stipple {
 
 namespace {
 
-// The push as a multiple of the bake's measured deviation (the deviation is measured in the
-// bind pose; skinning bends the surface between the occluder's vertices).
+// The push as a multiple of the bake's measured deviation (measured over the rest pose and
+// sampled poses of every clip, bake/occluder.h: skinning bends the surface between the
+// occluder's vertices).
 constexpr float kOccluderPushScale = 1.0f;
 
 // The mesh pass's vertex shader (runtime/renderer_shaders.h kMeshVs) with the push along the view
