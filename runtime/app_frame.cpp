@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "runtime/gl_state.h"
+#include "runtime/particle_frame.h"
 
 namespace stipple {
 namespace {
@@ -87,6 +88,8 @@ void pipeline_draw_into(Pipeline* p, const AnimationState& state, const AppView&
     pipeline_set_camera(p, view.view * view.model, view.projection, view.viewport[2],
                         view.viewport[3], view.model);
     pipeline_update(p, state, t);
+    if (p->particles.enabled)  // GI'01 strokes instead of dots (runtime/particle_frame.h)
+        particle_stage_update(&p->particles, pipeline_particle_input(*p));
     const auto start = std::chrono::steady_clock::now();
     const glm::mat4& vp = p->view_projection;
     renderer_draw_mesh(r, vp, p->vertex_positions.get(), p->asset->mesh.vertex_count);
@@ -97,7 +100,13 @@ void pipeline_draw_into(Pipeline* p, const AnimationState& state, const AppView&
     draw_body(r, vp);
     if (p->strokes.enabled) stroke_stage_draw(&p->strokes, pipeline_stroke_input(*p));
     draw_lines(r, vp, p->lines.get(), p->lines_drawn);
-    draw_dots(r, vp, p->draw_positions.get(), p->draw_sizes.get(), p->points_drawn);
+    const ParticleStage& s = p->particles;
+    if (s.enabled)  // each stroke whole by its centre's depth, as in the own frame
+        particle_renderer_draw(&p->particles.renderer, target, r->depth_tex, view.viewport[2],
+                               view.viewport[3], s.strokes.get(), s.stroke_count, view.viewport[0],
+                               view.viewport[1]);
+    else
+        draw_dots(r, vp, p->draw_positions.get(), p->draw_sizes.get(), p->points_drawn);
     gl_state_restore(gl, saved);
     if (t)
         t->draw +=

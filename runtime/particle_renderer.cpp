@@ -128,12 +128,13 @@ Status particle_renderer_init(ParticleRenderer* r, const GlApi& gl, uint32_t cap
 }
 
 void particle_renderer_draw(ParticleRenderer* r, GLuint framebuffer, GLuint depth_texture,
-                            int width, int height, const StrokeInstance* strokes, uint32_t count) {
+                            int width, int height, const StrokeInstance* strokes, uint32_t count,
+                            int x0, int y0) {
     if (count > r->capacity) count = r->capacity;
     if (count == 0) return;
     const GlApi& gl = r->gl;
     gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-    gl.Viewport(0, 0, width, height);
+    gl.Viewport(x0, y0, width, height);
     gl.UseProgram(r->program);
     gl.Uniform4f(r->u_viewport, float(width), float(height), 0.0f, 0.0f);
     gl.ActiveTexture(GL_TEXTURE0);

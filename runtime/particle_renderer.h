@@ -26,10 +26,12 @@ struct ParticleRenderer {
 
 // Draws strokes[0 .. count) (count is clamped to the capacity) into `framebuffer`, a
 // width x height colour target, testing each stroke's centre against `depth_texture` (the
-// polygon pass's window depth, same size; 0: no test). Blends over what is there; leaves
-// blending off and the vertex array unbound.
+// polygon pass's window depth, same size; 0: no test), in the viewport at (x0, y0) (the
+// application's, runtime/app_frame.h). Blends over what is there; leaves blending off and
+// the vertex array unbound.
 void particle_renderer_draw(ParticleRenderer* r, GLuint framebuffer, GLuint depth_texture,
-                            int width, int height, const StrokeInstance* strokes, uint32_t count);
+                            int width, int height, const StrokeInstance* strokes, uint32_t count,
+                            int x0 = 0, int y0 = 0);
 
 void particle_renderer_destroy(ParticleRenderer* r);
 
