@@ -13,14 +13,16 @@
 #include "bake/raw_scene.h"
 #include "bake/scene_import.h"
 #include "bake/scene_orientation.h"
+#include "tools/gltf_build.h"
 
 namespace stipple::tools {
 
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
-constexpr int kArrayBuffer = 34962;  // bufferView.target (glTF 2.0 spec)
-constexpr int kElementArrayBuffer = 34963;
+using gltf_build::add_values;
+using gltf_build::kArrayBuffer;
+using gltf_build::kElementArrayBuffer;
 
 // The chain: joint positions along the longest axis of the bounds, through their centre.
 struct Chain {
@@ -91,35 +93,6 @@ glm::quat joint_rotation(const Chain& c, const BendRigOptions& o, int i, float t
     return glm::angleAxis(sway, c.sway) * glm::angleAxis(bend, c.bend);
 }
 
-int add_view(tinygltf::Model* model, const void* bytes, size_t size, int target) {
-    std::vector<unsigned char>& data = model->buffers[0].data;
-    while (data.size() % 4 != 0) data.push_back(0);
-    tinygltf::BufferView view;
-    view.buffer = 0;
-    view.byteOffset = data.size();
-    view.byteLength = size;
-    view.target = target;
-    const auto* p = static_cast<const unsigned char*>(bytes);
-    data.insert(data.end(), p, p + size);
-    model->bufferViews.push_back(view);
-    return int(model->bufferViews.size() - 1);
-}
-
-template <typename T>
-int add_accessor(tinygltf::Model* model, const std::vector<T>& values, int target,
-                 int component_type, int type, size_t count, std::vector<double> min_values = {},
-                 std::vector<double> max_values = {}) {
-    tinygltf::Accessor a;
-    a.bufferView = add_view(model, values.data(), values.size() * sizeof(T), target);
-    a.componentType = component_type;
-    a.type = type;
-    a.count = count;
-    a.minValues = std::move(min_values);
-    a.maxValues = std::move(max_values);
-    model->accessors.push_back(a);
-    return int(model->accessors.size() - 1);
-}
-
 tinygltf::Primitive add_primitive(tinygltf::Model* model, const bake::RawScene& scene,
                                   const Chain& chain) {
     std::vector<uint8_t> joints;
@@ -136,18 +109,18 @@ tinygltf::Primitive add_primitive(tinygltf::Model* model, const bake::RawScene& 
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_TRIANGLES;
     prim.attributes["POSITION"] =
-        add_accessor(model, scene.positions, kArrayBuffer, kFloat, TINYGLTF_TYPE_VEC3, n,
-                     {lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z});
+        add_values(model, scene.positions, kArrayBuffer, kFloat, TINYGLTF_TYPE_VEC3, n,
+                   {lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z});
     if (scene.normals.size() == scene.positions.size())
         prim.attributes["NORMAL"] =
-            add_accessor(model, scene.normals, kArrayBuffer, kFloat, TINYGLTF_TYPE_VEC3, n);
-    prim.attributes["JOINTS_0"] = add_accessor(
+            add_values(model, scene.normals, kArrayBuffer, kFloat, TINYGLTF_TYPE_VEC3, n);
+    prim.attributes["JOINTS_0"] = add_values(
         model, joints, kArrayBuffer, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, n);
     prim.attributes["WEIGHTS_0"] =
-        add_accessor(model, weights, kArrayBuffer, kFloat, TINYGLTF_TYPE_VEC4, n);
-    prim.indices = add_accessor(model, scene.indices, kElementArrayBuffer,
-                                TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
-                                scene.indices.size());
+        add_values(model, weights, kArrayBuffer, kFloat, TINYGLTF_TYPE_VEC4, n);
+    prim.indices =
+        add_values(model, scene.indices, kElementArrayBuffer, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                   TINYGLTF_TYPE_SCALAR, scene.indices.size());
     return prim;
 }
 
@@ -178,8 +151,8 @@ void add_skeleton(tinygltf::Model* model, const Chain& c) {
     mesh.skin = 0;
     model->nodes.push_back(mesh);
     skin.skeleton = c.root;
-    skin.inverseBindMatrices = add_accessor(model, inverse_binds, 0, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                            TINYGLTF_TYPE_MAT4, size_t(bones));
+    skin.inverseBindMatrices = add_values(model, inverse_binds, 0, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                          TINYGLTF_TYPE_MAT4, size_t(bones));
     model->skins.push_back(skin);
 }
 
@@ -190,8 +163,8 @@ void add_bend_clip(tinygltf::Model* model, const Chain& c, const BendRigOptions&
     for (int k = 0; k < o.keys; ++k)
         times.push_back(o.period_seconds * float(k) / float(o.keys - 1));
     const int input =
-        add_accessor(model, times, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR,
-                     times.size(), {times.front()}, {times.back()});
+        add_values(model, times, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR,
+                   times.size(), {times.front()}, {times.back()});
     tinygltf::Animation clip;
     clip.name = "bend";
     for (int i = 0; i < int(c.joints.size()); ++i) {
@@ -203,8 +176,8 @@ void add_bend_clip(tinygltf::Model* model, const Chain& c, const BendRigOptions&
         }
         tinygltf::AnimationSampler sampler;
         sampler.input = input;
-        sampler.output = add_accessor(model, values, 0, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                      TINYGLTF_TYPE_VEC4, size_t(o.keys));
+        sampler.output = add_values(model, values, 0, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                    TINYGLTF_TYPE_VEC4, size_t(o.keys));
         sampler.interpolation = "LINEAR";
         clip.samplers.push_back(sampler);
         tinygltf::AnimationChannel channel;

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "tools/cli_options.h"
+#include "tools/gltf_build.h"
 
 namespace {
 
@@ -41,9 +42,9 @@ constexpr int kDefaultSegmentsAround = 48;
 constexpr int kDefaultSegmentsAlong = 64;
 constexpr int kMaxSegments = 4096;
 
-// bufferView.target values (glTF 2.0 spec, bufferView.target).
-constexpr int kArrayBuffer = 34962;
-constexpr int kElementArrayBuffer = 34963;
+using stipple::tools::gltf_build::add_values;
+using stipple::tools::gltf_build::kArrayBuffer;
+using stipple::tools::gltf_build::kElementArrayBuffer;
 
 struct Options {
     std::string out_path;
@@ -185,41 +186,6 @@ bool winding_is_outward(const TubeMesh& mesh) {
     return true;
 }
 
-// Appends `bytes` to buffer 0 as a new buffer view, 4-byte aligned so that every accessor's
-// offset is a multiple of its component size (glTF 2.0 spec, "Data Alignment").
-int add_view(tinygltf::Model* model, const void* bytes, size_t size, int target) {
-    std::vector<unsigned char>& data = model->buffers[0].data;
-    while (data.size() % 4 != 0) data.push_back(0);
-    tinygltf::BufferView view;
-    view.buffer = 0;
-    view.byteOffset = data.size();
-    view.byteLength = size;
-    view.target = target;
-    const auto* p = static_cast<const unsigned char*>(bytes);
-    data.insert(data.end(), p, p + size);
-    model->bufferViews.push_back(view);
-    return static_cast<int>(model->bufferViews.size() - 1);
-}
-
-int add_accessor(tinygltf::Model* model, int view, int component_type, int type, size_t count,
-                 std::vector<double> min_values = {}, std::vector<double> max_values = {}) {
-    tinygltf::Accessor accessor;
-    accessor.bufferView = view;
-    accessor.byteOffset = 0;
-    accessor.componentType = component_type;
-    accessor.type = type;
-    accessor.count = count;
-    accessor.minValues = std::move(min_values);
-    accessor.maxValues = std::move(max_values);
-    model->accessors.push_back(accessor);
-    return static_cast<int>(model->accessors.size() - 1);
-}
-
-template <typename T>
-int add_array(tinygltf::Model* model, const std::vector<T>& values, int target) {
-    return add_view(model, values.data(), values.size() * sizeof(T), target);
-}
-
 // Adds an animation of one sampler that drives `node`'s scale through `scales` at `times`.
 void add_scale_animation(tinygltf::Model* model, const char* name, int node,
                          const std::vector<float>& times, const std::vector<glm::vec3>& scales) {
@@ -228,11 +194,10 @@ void add_scale_animation(tinygltf::Model* model, const char* name, int node,
     // Sampler inputs must carry min and max (glTF 2.0 spec, "Animations": input accessors must have
     // min and max).
     const int input =
-        add_accessor(model, add_array(model, times, 0), TINYGLTF_COMPONENT_TYPE_FLOAT,
-                     TINYGLTF_TYPE_SCALAR, times.size(), {times.front()}, {times.back()});
-    const int output =
-        add_accessor(model, add_array(model, values, 0), TINYGLTF_COMPONENT_TYPE_FLOAT,
-                     TINYGLTF_TYPE_VEC3, scales.size());
+        add_values(model, times, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR,
+                   times.size(), {times.front()}, {times.back()});
+    const int output = add_values(model, values, 0, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                  TINYGLTF_TYPE_VEC3, scales.size());
     tinygltf::AnimationSampler sampler;
     sampler.input = input;
     sampler.output = output;
@@ -267,27 +232,24 @@ tinygltf::Primitive add_tube_primitive(tinygltf::Model* model_out, const TubeMes
     tinygltf::Primitive primitive;
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
     // POSITION must carry min and max (glTF 2.0 spec, "Meshes").
-    primitive.attributes["POSITION"] = add_accessor(
-        &model, add_array(&model, positions, kArrayBuffer), TINYGLTF_COMPONENT_TYPE_FLOAT,
-        TINYGLTF_TYPE_VEC3, n, {lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z});
-    primitive.attributes["NORMAL"] =
-        add_accessor(&model, add_array(&model, normals, kArrayBuffer),
-                     TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
-    primitive.attributes["JOINTS_0"] =
-        add_accessor(&model, add_array(&model, joints, kArrayBuffer),
-                     TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, n);
-    primitive.attributes["WEIGHTS_0"] =
-        add_accessor(&model, add_array(&model, weights, kArrayBuffer),
-                     TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, n);
+    primitive.attributes["POSITION"] =
+        add_values(&model, positions, kArrayBuffer, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                   TINYGLTF_TYPE_VEC3, n, {lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z});
+    primitive.attributes["NORMAL"] = add_values(
+        &model, normals, kArrayBuffer, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
+    primitive.attributes["JOINTS_0"] = add_values(
+        &model, joints, kArrayBuffer, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, n);
+    primitive.attributes["WEIGHTS_0"] = add_values(
+        &model, weights, kArrayBuffer, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, n);
     if (n <= 65535) {
         std::vector<uint16_t> indices(mesh.indices.begin(), mesh.indices.end());
-        primitive.indices = add_accessor(&model, add_array(&model, indices, kElementArrayBuffer),
-                                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
-                                         TINYGLTF_TYPE_SCALAR, indices.size());
+        primitive.indices =
+            add_values(&model, indices, kElementArrayBuffer, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                       TINYGLTF_TYPE_SCALAR, indices.size());
     } else {
-        primitive.indices = add_accessor(
-            &model, add_array(&model, mesh.indices, kElementArrayBuffer),
-            TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, mesh.indices.size());
+        primitive.indices = add_values(&model, mesh.indices, kElementArrayBuffer,
+                                       TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
+                                       mesh.indices.size());
     }
     return primitive;
 }
@@ -322,8 +284,8 @@ void add_rig(tinygltf::Model* model_out) {
     skin.name = "tube_rig";
     skin.joints = {0, 1};
     skin.skeleton = 0;
-    skin.inverseBindMatrices = add_accessor(&model, add_array(&model, inverse_binds, 0),
-                                            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4, 2);
+    skin.inverseBindMatrices =
+        add_values(&model, inverse_binds, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4, 2);
     model.skins.push_back(skin);
 }
 

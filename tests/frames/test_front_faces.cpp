@@ -5,13 +5,14 @@
 // the depth copies and the colour must match byte for byte.
 #include <gtest/gtest.h>
 
-#include <memory>
+#include <algorithm>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "runtime/frame_pipeline.h"
 #include "runtime/silhouette.h"
-#include "tests/common/fixtures.h"
+#include "tests/common/pipeline_view.h"
 
 namespace {
 
@@ -22,15 +23,10 @@ struct Readback {
     std::vector<float> depth;
 };
 
-Readback read(stipple::Pipeline* p) {
-    const stipple::FrameConfig& c = p->config;
-    const size_t n = size_t(c.width) * size_t(c.height);
+Readback read(PipelineView* view) {
     Readback r;
-    r.colour.resize(n * 4);
-    r.depth.resize(n);
-    std::vector<float> scratch(n * 4);
-    stipple::renderer_read_color(&p->renderer, r.colour.data());
-    stipple::renderer_read_depth(&p->renderer, scratch.data(), r.depth.data());
+    r.colour = view->read_colour();
+    r.depth = view->read_depth();
     return r;
 }
 
@@ -48,43 +44,31 @@ void redraw_all_triangles(stipple::Pipeline* p) {
 
 void check_asset(const std::string& input, const std::string& options, int clip) {
     SCOPED_TRACE(input);
-    stipple::Asset asset;
+    PipelineView view;
     std::string error;
-    ASSERT_TRUE(load_baked(baked_asset(input, options), &asset, &error)) << error;
-    HeadlessGl gl;
-    ASSERT_TRUE(gl.open(&error)) << error;
-    stipple::FrameConfig config;
-    config.width = 320;
-    config.height = 240;
-    config.depth_readback = true;
-    auto p = std::make_unique<stipple::Pipeline>();
-    ASSERT_TRUE(stipple::pipeline_init(p.get(), asset, gl.gl(), config).ok());
-    const float views[][3] = {{1.0f, 0.0f, 0.0f},
-                              {1.0f, 90.0f, 20.0f},
-                              {2.5f, 200.0f, -30.0f},
-                              {0.6f, -60.0f, 60.0f},
-                              {6.0f, 30.0f, 5.0f}};
+    ASSERT_TRUE(view.open(baked_asset(input, options), 320, 240, &error)) << error;
+    stipple::Pipeline* p = view.pipeline();
+    const CameraView cameras[] = {{1.0f, 0.0f, 0.0f},
+                                  {1.0f, 90.0f, 20.0f},
+                                  {2.5f, 200.0f, -30.0f},
+                                  {0.6f, -60.0f, 60.0f},
+                                  {6.0f, 30.0f, 5.0f}};
     uint32_t least_kept = UINT32_MAX;
-    for (const auto& v : views) {
-        stipple::FrameConfig view = p->config;
-        view.zoom = v[0];
-        view.yaw_degrees = v[1];
-        view.pitch_degrees = v[2];
-        ASSERT_TRUE(stipple::pipeline_set_view(p.get(), view).ok());
-        stipple::pipeline_frame(p.get(), clip, 0.4f, nullptr);
+    for (const CameraView& v : cameras) {
+        ASSERT_TRUE(view.set_view(v));
+        stipple::pipeline_frame(p, clip, 0.4f, nullptr);
         // The flags were used: the pass drew a subset of the triangles.
         ASSERT_NE(p->renderer.front_count, stipple::Renderer::kFrontNotBuilt);
         least_kept = std::min(least_kept, p->renderer.front_count);
-        const Readback front = read(p.get());
-        redraw_all_triangles(p.get());
-        const Readback all = read(p.get());
-        SCOPED_TRACE("zoom " + std::to_string(v[0]) + " yaw " + std::to_string(v[1]));
+        const Readback front = read(&view);
+        redraw_all_triangles(p);
+        const Readback all = read(&view);
+        SCOPED_TRACE("zoom " + std::to_string(v.zoom) + " yaw " + std::to_string(v.yaw_degrees));
         ASSERT_GT(p->points_drawn, 0u);
         ASSERT_TRUE(front.depth == all.depth);
         ASSERT_TRUE(front.colour == all.colour);
     }
-    EXPECT_LT(least_kept, asset.mesh.triangle_count * 3 / 4);  // most back faces never sent
-    stipple::pipeline_destroy(p.get());
+    EXPECT_LT(least_kept, view.asset().mesh.triangle_count * 3 / 4);  // most back faces never sent
 }
 
 TEST(FrontFaces, SameDepthAndPictureAsGpuCulling) {

@@ -2,12 +2,16 @@
 // match the blessed PNGs within the stated tolerance (per channel 8/255, 1-pixel shift
 // forgiven, at most 0.5% of pixels failing). A failure writes the actual frame and a diff
 // image next to the test's temporary files. Re-bless with scripts/bless-goldens.sh. The
-// assets are baked once per ctest run (bake_test_assets.golden_<name>).
+// assets are baked once per ctest run (bake_test_assets.golden_<name>). One test per case
+// (Cases/GoldenFrame.MatchesBlessedImage/<name>), so ctest -j spreads them over its jobs.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <ostream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "tests/common/fixtures.h"
 
@@ -15,47 +19,80 @@ namespace {
 
 using namespace stipple::test;
 
+struct GoldenCase {
+    std::string name, input, bake, play;
+};
+// Named by gtest (and so by ctest) as the case's name, not as its bytes.
+void PrintTo(const GoldenCase& c, std::ostream* os) {
+    *os << c.name;
+}
+
 std::string trim(const std::string& s) {
     size_t a = s.find_first_not_of(" \t"), b = s.find_last_not_of(" \t");
     return a == std::string::npos ? "" : s.substr(a, b - a + 1);
 }
 
-TEST(GoldenFrames, MatchBlessedImages) {
+// The cases of tests/golden/cases.txt (name | input | bake options | play options).
+std::vector<GoldenCase> read_cases() {
     std::ifstream cases(source("tests/golden/cases.txt"));
-    ASSERT_TRUE(cases.good());
-    std::string line, work = ::testing::TempDir() + "golden_" + std::to_string(getpid());
-    run("rm -rf " + work + " && mkdir -p " +
-        work);  // kept after a failure: actual frames and diffs
-    int checked = 0;
+    std::vector<GoldenCase> out;
+    std::string line;
     while (std::getline(cases, line)) {
         if (line.empty() || line[0] == '#') continue;
         std::stringstream fields(line);
-        std::string name, input, bake, play;
-        std::getline(fields, name, '|');
-        std::getline(fields, input, '|');
-        std::getline(fields, bake, '|');
-        std::getline(fields, play, '|');
-        name = trim(name);
-        const std::string asset = baked_asset(trim(input), bake), out = work + "/" + name;
-        ASSERT_FALSE(asset.empty()) << name;
-        ASSERT_EQ(
-            run(play_checked() + " " + asset + " --out " + out + " --frames 1 --no-apng " + play),
-            0);
-        std::string log;
-        int rc =
-            run(bin("stipple-compare") + " " + out + "/frame_0000.png " +
-                    source(("tests/golden/" + name + ".png").c_str()) +
-                    " --tolerance 8 --shift 1 --max-fraction 0.005 --diff " + out + "/diff.png",
-                &log);
-        EXPECT_EQ(rc, 0) << name << ": " << log << " (actual and diff in " << out << ")";
-        ++checked;
+        GoldenCase c;
+        std::getline(fields, c.name, '|');
+        std::getline(fields, c.input, '|');
+        std::getline(fields, c.bake, '|');
+        std::getline(fields, c.play, '|');
+        c.name = trim(c.name);
+        c.input = trim(c.input);
+        out.push_back(c);
     }
-    // Every blessed image has its case (and the file was read at all).
+    return out;
+}
+
+class GoldenFrame : public ::testing::TestWithParam<GoldenCase> {};
+
+TEST_P(GoldenFrame, MatchesBlessedImage) {
+    const GoldenCase& c = GetParam();
+    const std::string asset = baked_asset(c.input, c.bake);
+    ASSERT_FALSE(asset.empty()) << c.name;
+    // Kept after a failure: the actual frame and the diff.
+    const std::string out =
+        ::testing::TempDir() + "golden_" + std::to_string(getpid()) + "/" + c.name;
+    ASSERT_EQ(run("rm -rf " + out + " && mkdir -p " + out), 0);
+    ASSERT_EQ(
+        run(play_checked() + " " + asset + " --out " + out + " --frames 1 --no-apng " + c.play), 0);
+    std::string log;
+    const int rc =
+        run(bin("stipple-compare") + " " + out + "/frame_0000.png " +
+                source("tests/golden/" + c.name + ".png") +
+                " --tolerance 8 --shift 1 --max-fraction 0.005 --diff " + out + "/diff.png",
+            &log);
+    EXPECT_EQ(rc, 0) << c.name << ": " << log << " (actual and diff in " << out << ")";
+    if (rc == 0) run("rm -rf " + out);
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, GoldenFrame, ::testing::ValuesIn(read_cases()),
+                         [](const ::testing::TestParamInfo<GoldenCase>& param) {
+                             return param.param.name;
+                         });
+
+// Every blessed image has its case (and the file was read at all).
+TEST(GoldenFrames, EveryBlessedImageHasItsCase) {
+    const std::vector<GoldenCase> cases = read_cases();
     int blessed = 0;
-    for (const auto& entry : std::filesystem::directory_iterator(source("tests/golden")))
-        blessed += entry.path().extension() == ".png";
-    EXPECT_GT(checked, 0);
-    EXPECT_EQ(checked, blessed);
+    for (const auto& entry : std::filesystem::directory_iterator(source("tests/golden"))) {
+        if (entry.path().extension() != ".png") continue;
+        ++blessed;
+        const std::string name = entry.path().stem().string();
+        bool found = false;
+        for (const GoldenCase& c : cases) found = found || c.name == name;
+        EXPECT_TRUE(found) << name << ".png has no line in tests/golden/cases.txt";
+    }
+    EXPECT_GT(cases.size(), 0u);
+    EXPECT_EQ(cases.size(), size_t(blessed));
 }
 
 TEST(GoldenFrames, CompareToolRejectsADifferentFrame) {

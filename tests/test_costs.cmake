@@ -1,0 +1,38 @@
+# COST (the seconds under ASan+UBSan, scripts/test.sh --sanitize on 2 cores, measured in a
+# full ctest -j2 run in December 2026) of the longest tests,
+# so that ctest -j starts them first in a fresh build (tests/CMakeLists.txt includes this file
+# in every test directory). Once a build has run its tests, ctest's own measurements
+# (Testing/Temporary/CTestCostData.txt) take over. Re-measure: ctest --test-dir BUILD -j2, then
+# sort that file by its third column.
+set(_stipple_costs
+  # The fixture bakes (FIXTURES_SETUP test_assets): every test that reads a baked asset waits
+  # for the last of them, so the longest start first.
+  bake_test_assets.horse_occluder 31
+  bake_test_assets.bunny_262k_simplify_particles 26
+  bake_test_assets.bunny_262k 18
+  bake_test_assets.tube_100k 5
+  bake_test_assets.cesium_occluder 5
+  bake_test_assets.bunny_curvature 4
+  bake_test_assets.cesium_60k 3
+  bake_test_assets.cesium_20k_relax 3
+  # The tests.
+  Examples.BuildThreeWalkers 21
+  FrameChecks.ToneIsKeptUnderDeformationWithRelevanceUpdates 14
+  ParticleFrames.EveryStyleIsDistinctAndDeterministicOnTheBunny 14
+  Coherence.ZoomFromOneToSixteenDoesNotPop 13
+  FrameChecks.ToneIsKeptUnderScale 13
+  ParticleFrames.StrokeDensityHoldsAt640x480WithABoundedList 13
+  ParticleFrames.EveryStyleIsDistinctAndDeterministicOnTheWalk 12
+  BakeFiles.SigtermDuringTheWriteLeavesNoTempFile 12
+  ParticleAllocation.ParticleFramesAllocateNothingAfterInit 11
+  ThreadAllocation.FramesOnThreeThreadsAllocateNothing 9
+  PointStagesTest.ThreadsGiveByteIdenticalPointsOnTheWalk 9
+  Styles.EachStyleIsItsOwnDeterministicFrame 8)
+list(LENGTH _stipple_costs _n)
+math(EXPR _last "${_n} - 1")
+foreach(_i RANGE 0 ${_last} 2)
+  math(EXPR _j "${_i} + 1")
+  list(GET _stipple_costs ${_i} _test)
+  list(GET _stipple_costs ${_j} _cost)
+  set_tests_properties(${_test} PROPERTIES COST ${_cost})
+endforeach()
