@@ -6,30 +6,15 @@
 #include <numeric>
 #include <utility>
 
+#include "bake/closest_on_triangle.h"
+
 namespace stipple::bake {
 
 namespace {
 
-// Closest point to p on triangle (a, b, c) (Ericson, Real-Time Collision Detection 5.1.5).
 Vec3d closest_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-    const Vec3d ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab | ap, d2 = ac | ap;
-    if (d1 <= 0 && d2 <= 0) return a;
-    const Vec3d bp = p - b;
-    const double d3 = ab | bp, d4 = ac | bp;
-    if (d3 >= 0 && d4 <= d3) return b;
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
-    const Vec3d cp = p - c;
-    const double d5 = ab | cp, d6 = ac | cp;
-    if (d6 >= 0 && d5 <= d6) return c;
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    const double denom = 1.0 / (va + vb + vc);
-    return a + ab * (vb * denom) + ac * (vc * denom);
+    return bake::closest_on_triangle(p, a, b, c,
+                                     [](const Vec3d& x, const Vec3d& y) { return x | y; });
 }
 
 }  // namespace

@@ -3,31 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bake/closest_on_triangle.h"
+
 namespace stipple::bake {
 
 namespace {
-
-// The point of triangle abc nearest to p (Ericson, Real-Time Collision Detection §5.1.5).
-glm::vec3 closest_on_triangle(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3 c) {
-    const glm::vec3 ab = b - a, ac = c - a, ap = p - a;
-    const float d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0) return a;
-    const glm::vec3 bp = p - b;
-    const float d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3) return b;
-    const float vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
-    const glm::vec3 cp = p - c;
-    const float d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6) return c;
-    const float vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
-    const float va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    const float denom = 1.0f / (va + vb + vc);
-    return a + ab * (vb * denom) + ac * (vc * denom);
-}
 
 glm::ivec3 cell_of(const TriangleGrid& g, glm::vec3 p) {
     return glm::ivec3(glm::floor((p - g.origin) / g.cell));
@@ -107,7 +87,9 @@ float one_sided_gap(const TriangleGrid& g, glm::vec3 p, float side) {
                     const size_t k = cell_index(g, at);
                     for (uint32_t j = g.cell_start[k]; j < g.cell_start[k + 1]; ++j) {
                         const glm::vec3* t = &g.corners[size_t(g.items[j]) * 3];
-                        const glm::vec3 q = closest_on_triangle(p, t[0], t[1], t[2]);
+                        const glm::vec3 q = closest_on_triangle(
+                            p, t[0], t[1], t[2],
+                            [](glm::vec3 u, glm::vec3 v) { return glm::dot(u, v); });
                         const float dist = glm::length(p - q);
                         if (dist >= best) continue;
                         best = dist;

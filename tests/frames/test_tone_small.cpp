@@ -17,13 +17,12 @@
 #include "runtime/asset.h"
 #include "runtime/frame_pipeline.h"
 #include "tests/common/fixtures.h"
+#include "tests/common/tone_stage.h"
 #include "tools/frame_measure.h"
 
 namespace {
 
 using namespace stipple;
-
-constexpr int kWidth = 640, kHeight = 480;
 
 // What one view measured.
 struct View {
@@ -33,95 +32,35 @@ struct View {
     double centre_ink = 0;  // the same for a one-texel test at the centre (the old rule)
 };
 
-class SmallStage {
-  public:
-    bool open(const std::string& path, std::string* error) {
-        if (!headless_.open(error)) return false;
-        const std::string baked = test::baked_asset("assets/" + path, "");
-        if (baked.empty() || !test::load_baked(baked, &asset_, error)) return false;
-        FrameConfig config;
-        config.width = kWidth;
-        config.height = kHeight;
-        config.silhouettes = false;
-        config.depth_readback = true;
-        config.check_gl_errors = true;
-        config.frame_clip = asset_.clip_count > 0 ? 0 : -1;
-        pipeline_.reset(new Pipeline());
-        const Status init = pipeline_init(pipeline_.get(), asset_, headless_.gl(), config);
-        if (!init.ok()) {
-            *error = init.message;
-            return false;
-        }
-        rgba_.resize(size_t(kWidth) * kHeight * 4);
-        scratch_.resize(size_t(kWidth) * kHeight * 4);
-        depth_.resize(size_t(kWidth) * kHeight);
-        dots_.resize(pipeline_->point_capacity);
-        return true;
+// One view of the asset on `stage` measured: the inset tone, and the ink of the dots drawn and
+// of those the old one-texel rule would have drawn, per mask pixel.
+View shoot(test::Stage* stage, float zoom, float tone, float yaw) {
+    const test::Shot shot = stage->shoot(zoom, tone, 0.0f, yaw);
+    const Pipeline& p = stage->pipeline();
+    const std::vector<float>& depth = stage->depth();
+    const int w = test::Stage::kWidth, h = test::Stage::kHeight;
+    size_t mask_pixels = 0;
+    for (uint8_t in : shot.mask.inside) mask_pixels += in;
+    View v;
+    measure::Mask inner = shot.mask;
+    const std::vector<float> distance = measure::distance_to_outside(shot.mask);
+    for (size_t i = 0; i < distance.size(); ++i) inner.inside[i] = distance[i] > 2.0f;
+    v.tone = measure::mean_tone(shot.image.rgba.data(), w, h, inner, &v.pixels);
+    const double per_pixel = 1.0 / double(std::max<size_t>(mask_pixels, 1));
+    for (const measure::Dot& d : shot.dots)
+        v.drawn_ink += 0.785398 * double(d.size) * d.size * per_pixel;
+    // The old rule: the one texel under the dot's centre on the object and not in front.
+    for (uint32_t i = 0; i < pipeline_point_count(p); ++i) {
+        if (p.size[i] <= 0.0f) continue;
+        const glm::vec3 c = pipeline_project(p, i);
+        const int x = int(std::floor(c.x)), y = int(std::floor(c.y));
+        if (x < 0 || y < 0 || x >= w || y >= h) continue;
+        const float mesh = depth[size_t(h - 1 - y) * size_t(w) + size_t(x)];
+        if (mesh < 1.0f && c.z <= mesh + 1e-5f)
+            v.centre_ink += 0.785398 * double(p.size[i]) * p.size[i] * per_pixel;
     }
-
-    View shoot(float zoom, float tone, float yaw) {
-        Pipeline& p = *pipeline_;
-        FrameConfig view = p.config;
-        view.zoom = zoom;
-        view.constant_tone = tone;
-        view.yaw_degrees = yaw;
-        const Status set = pipeline_set_view(&p, view);
-        EXPECT_TRUE(set.ok()) << set.message;
-        pipeline_frame(&p, p.config.frame_clip, 0.0f, nullptr);
-        renderer_read_color(&p.renderer, rgba_.data());
-        renderer_read_depth(&p.renderer, scratch_.data(), depth_.data());
-        EXPECT_EQ(pipeline_gl_errors(p).count, 0u);
-        measure::Image image;
-        measure::Mask mask;
-        image.width = mask.width = kWidth;
-        image.height = mask.height = kHeight;
-        image.rgba.resize(rgba_.size());
-        mask.inside.resize(depth_.size());
-        size_t mask_pixels = 0;
-        for (int y = 0; y < kHeight; ++y) {  // GL rows are bottom first
-            const size_t from = size_t(kHeight - 1 - y) * kWidth, to = size_t(y) * kWidth;
-            std::copy(rgba_.begin() + from * 4, rgba_.begin() + (from + kWidth) * 4,
-                      image.rgba.begin() + to * 4);
-            for (int x = 0; x < kWidth; ++x) {
-                mask.inside[to + x] = depth_[from + x] < 1.0f;
-                mask_pixels += mask.inside[to + x];
-            }
-        }
-        View v;
-        measure::Mask inner = mask;
-        const std::vector<float> distance = measure::distance_to_outside(mask);
-        for (size_t i = 0; i < distance.size(); ++i) inner.inside[i] = distance[i] > 2.0f;
-        v.tone = measure::mean_tone(image.rgba.data(), kWidth, kHeight, inner, &v.pixels);
-        const double per_pixel = 1.0 / double(std::max<size_t>(mask_pixels, 1));
-        const uint32_t n =
-            pipeline_visible_dots(p, depth_.data(), dots_.data(), uint32_t(dots_.size()));
-        for (uint32_t i = 0; i < n; ++i)
-            v.drawn_ink += 0.785398 * double(dots_[i].size) * dots_[i].size * per_pixel;
-        // The old rule: the one texel under the dot's centre on the object and not in front.
-        for (uint32_t i = 0; i < pipeline_point_count(p); ++i) {
-            if (p.size[i] <= 0.0f) continue;
-            const glm::vec3 s = pipeline_project(p, i);
-            const int x = int(std::floor(s.x)), y = int(std::floor(s.y));
-            if (x < 0 || y < 0 || x >= kWidth || y >= kHeight) continue;
-            const float mesh = depth_[size_t(kHeight - 1 - y) * kWidth + size_t(x)];
-            if (mesh < 1.0f && s.z <= mesh + 1e-5f)
-                v.centre_ink += 0.785398 * double(p.size[i]) * p.size[i] * per_pixel;
-        }
-        return v;
-    }
-
-    ~SmallStage() {
-        if (pipeline_) pipeline_destroy(pipeline_.get());
-    }
-
-  private:
-    test::HeadlessGl headless_;  // destroyed last: the pipeline's GL objects go first
-    Asset asset_;
-    std::unique_ptr<Pipeline> pipeline_;
-    std::vector<uint8_t> rgba_;
-    std::vector<float> scratch_, depth_;
-    std::vector<VisibleDot> dots_;
-};
+    return v;
+}
 
 struct SmallAsset {
     const char* name;
@@ -149,11 +88,11 @@ struct Views {
     size_t pixels = 0;
 };
 
-Views shoot_views(SmallStage* stage, const SmallAsset& a, float zoom, float target) {
+Views shoot_views(test::Stage* stage, const SmallAsset& a, float zoom, float target) {
     Views s;
     int n = 0;
     for (float yaw = a.first_yaw; yaw <= a.last_yaw; yaw += 30.0f, ++n) {
-        const View v = stage->shoot(zoom, target, yaw);
+        const View v = shoot(stage, zoom, target, yaw);
         s.tone += v.tone;
         s.lo = std::min(s.lo, v.tone);
         s.hi = std::max(s.hi, v.tone);
@@ -175,9 +114,9 @@ class SmallTone : public ::testing::TestWithParam<SmallAsset> {};
 // the views: within +-10% of 0.3 and 0.6; 0.1 within +-20% (see below).
 TEST_P(SmallTone, ToneHoldsAtZoomQuarter) {
     const SmallAsset& a = GetParam();
-    SmallStage stage;
+    test::Stage stage;
     std::string error;
-    ASSERT_TRUE(stage.open(a.path, &error)) << error;
+    ASSERT_TRUE(stage.open(a.path, "", nullptr, &error)) << error;
     for (float target : {0.1f, 0.3f, 0.6f}) {
         const Views near = shoot_views(&stage, a, 1.0f, target);
         const Views small = shoot_views(&stage, a, 0.25f, target);
