@@ -13,4 +13,8 @@ namespace stipple {
 // go to t (when not null) from *clock on.
 void pipeline_point_stages(Pipeline* p, bool lod, StageTimes* t, StageClock::time_point* clock);
 
+// The run-time refinement after the baked points are sized (runtime/frame_refine_stage.cpp):
+// places the extra points, sizes them and fades the baked ones they replace.
+void pipeline_refine_stage(Pipeline* p, bool lod, StageTimes* t, StageClock::time_point* clock);
+
 }  // namespace stipple
