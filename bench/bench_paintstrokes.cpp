@@ -10,8 +10,8 @@
 #include <chrono>
 #include <memory>
 
+#include "bench/bench_setup.h"
 #include "bench/paintstroke_scene.h"
-#include "platform/headless_context.h"
 #include "runtime/stroke_renderer.h"
 #include "runtime/stroke_sort.h"
 
@@ -20,9 +20,7 @@ namespace {
 using namespace stipple;
 using namespace stipple::bench;
 
-struct Setup {
-    platform::HeadlessContext context;
-    GlApi gl;
+struct Setup : HeadlessGl {
     StrokeRenderer renderer;
     Target target;
     Scene scene;
@@ -31,15 +29,9 @@ struct Setup {
     StaticFrame static_frame;
 };
 
-Setup* setup() {
-    static std::unique_ptr<Setup> s;
-    static bool tried = false;
-    if (tried) return s.get();
-    tried = true;
-    auto n = std::make_unique<Setup>();
-    platform::HeadlessConfig hc;
-    if (!platform::create_headless_context(hc, &n->context).ok()) return nullptr;
-    if (!load_gl_api(platform::proc_loader(n->context), &n->gl).ok()) return nullptr;
+// Builds the scene, its static models, the tessellators and the renderer sized for the largest.
+bool build(Setup* n) {
+    if (!headless_gl(n)) return false;
     n->scene = make_gi98_scene();
     const int sides[3] = {9, 5, 3};
     uint64_t max_v = 0, max_i = 0;
@@ -57,10 +49,12 @@ Setup* setup() {
     StrokeRendererConfig rc;
     rc.max_vertices = uint32_t(std::min<uint64_t>(max_v, 1u << 24));
     rc.max_indices = uint32_t(std::min<uint64_t>(max_i, 1u << 26));
-    if (!stroke_renderer_init(&n->renderer, n->gl, rc).ok()) return nullptr;
-    if (!target_init(n->gl, kWidth, kHeight, &n->target)) return nullptr;
-    s = std::move(n);
-    return s.get();
+    return stroke_renderer_init(&n->renderer, n->gl, rc).ok() &&
+           target_init(n->gl, kWidth, kHeight, &n->target);
+}
+
+Setup* setup() {
+    return build_once<Setup>(build);
 }
 
 void draw(Setup* s, const View& view, const StrokeVertex* v, uint32_t vn, const uint32_t* idx,

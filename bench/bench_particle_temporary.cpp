@@ -14,41 +14,19 @@
 
 #include <memory>
 
-#include "bench/bench_asset.h"
-#include "platform/headless_context.h"
-#include "runtime/particle_frame.h"
+#include "bench/bench_setup.h"
 
 namespace {
 
 using namespace stipple;
 
-struct Setup {
-    platform::HeadlessContext context;
-    GlApi gl;
-    Asset asset;
-    std::unique_ptr<Pipeline> pipeline = std::make_unique<Pipeline>();
-    std::unique_ptr<ParticleStage> stage = std::make_unique<ParticleStage>();
+struct Setup : bench::ParticleScene {
     int frame = 0;
 };
 
 Setup* setup() {
-    static std::unique_ptr<Setup> s;
-    static bool tried = false;
-    if (tried) return s.get();
-    tried = true;
-    auto n = std::make_unique<Setup>();
-    if (!platform::create_headless_context({}, &n->context).ok()) return nullptr;
-    if (!load_gl_api(platform::proc_loader(n->context), &n->gl).ok()) return nullptr;
-    if (!bench::bake_asset("CesiumMan/CesiumMan.glb", 20000, &n->asset)) return nullptr;
-    const ParticleStyle& style = *find_particle_style("painterly-long");
-    FrameConfig c;
-    particle_style_frame_config(style, &c);
-    c.zoom = 8.0f;
-    if (!pipeline_init(n->pipeline.get(), n->asset, n->gl, c).ok()) return nullptr;
-    if (!particle_stage_init(n->stage.get(), n->asset, style, c.width, c.height).ok())
-        return nullptr;
-    s = std::move(n);
-    return s.get();
+    return bench::build_once<Setup>(
+        [](Setup* s) { return bench::particle_scene(s, "painterly-long", 8.0f, false); });
 }
 
 // Poses the next frame of the walk (30 fps).

@@ -18,46 +18,26 @@
 #include <memory>
 #include <vector>
 
-#include "bench/bench_asset.h"
-#include "platform/headless_context.h"
-#include "runtime/particle_frame.h"
+#include "bench/bench_setup.h"
 
 namespace {
 
 using namespace stipple;
 
-struct Setup {
-    platform::HeadlessContext context;
-    GlApi gl;
-    Asset asset;
-    std::unique_ptr<Pipeline> pipeline = std::make_unique<Pipeline>();
-    std::unique_ptr<ParticleStage> stage = std::make_unique<ParticleStage>();
+struct Setup : bench::ParticleScene {
     std::vector<uint32_t> all;  // every particle id, for AdjustFull
     std::vector<uint8_t> unfold;
     std::vector<StrokeInstance> thin;
 };
 
 Setup* setup() {
-    static std::unique_ptr<Setup> s;
-    static bool tried = false;
-    if (tried) return s.get();
-    tried = true;
-    auto n = std::make_unique<Setup>();
-    if (!platform::create_headless_context({}, &n->context).ok()) return nullptr;
-    if (!load_gl_api(platform::proc_loader(n->context), &n->gl).ok()) return nullptr;
-    if (!bench::bake_asset("CesiumMan/CesiumMan.glb", 20000, &n->asset)) return nullptr;
-    const ParticleStyle& style = *find_particle_style("painterly-long");
-    FrameConfig c;
-    particle_style_frame_config(style, &c);
-    if (!pipeline_init(n->pipeline.get(), n->asset, n->gl, c).ok()) return nullptr;
-    if (!particle_stage_init(n->stage.get(), n->asset, style, c.width, c.height).ok() ||
-        !particle_stage_init_gl(n->stage.get(), n->gl).ok())
-        return nullptr;
-    n->all.resize(n->asset.points.point_count);
-    for (uint32_t i = 0; i < n->all.size(); ++i) n->all[i] = i;
-    n->unfold.resize(n->all.size());
-    s = std::move(n);
-    return s.get();
+    return bench::build_once<Setup>([](Setup* s) {
+        if (!bench::particle_scene(s, "painterly-long", 1.0f, true)) return false;
+        s->all.resize(s->asset.points.point_count);
+        for (uint32_t i = 0; i < s->all.size(); ++i) s->all[i] = i;
+        s->unfold.resize(s->all.size());
+        return true;
+    });
 }
 
 // Poses frame f of the walk (30 fps) and runs stage 1 once, so the set follows the walk.

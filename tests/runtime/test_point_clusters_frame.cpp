@@ -14,7 +14,7 @@
 #include "runtime/frame_pipeline.h"
 #include "runtime/point_clusters.h"
 #include "runtime/point_simd.h"
-#include "tests/common/fixtures.h"
+#include "tests/common/point_frame_fixture.h"
 
 namespace {
 
@@ -36,25 +36,9 @@ Selection selection(const stipple::Pipeline& p) {
     return s;
 }
 
-bool same_bytes(const std::vector<float>& a, const std::vector<float>& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * 4) == 0;
-}
+using stipple::test::same_bytes;
 
-class PointClustersFrame : public ::testing::Test {
-  protected:
-    void SetUp() override {
-        std::string error;
-        ASSERT_TRUE(stipple::test::load_baked(
-            stipple::test::baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 60000"), &asset_,
-            &error))
-            << error;
-        ASSERT_TRUE(gl_.open(&error)) << error;
-    }
-    void TearDown() override { stipple::point_simd_force(stipple::point_simd_detected()); }
-
-    stipple::Asset asset_;
-    stipple::test::HeadlessGl gl_;
-};
+class PointClustersFrame : public stipple::test::Cesium60kFrame {};
 
 TEST_F(PointClustersFrame, PlacedSetIsTheRunSetAndItsNeighbours) {
     stipple::FrameConfig config;

@@ -18,7 +18,7 @@
 #include "runtime/point_stages.h"
 #include "runtime/stipple.h"
 #include "runtime/thread_pool.h"
-#include "tests/common/fixtures.h"
+#include "tests/common/point_frame_fixture.h"
 
 namespace {
 
@@ -50,9 +50,7 @@ Outputs outputs(const Pipeline& p) {
     return o;
 }
 
-bool same_bytes(const std::vector<float>& a, const std::vector<float>& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * 4) == 0;
-}
+using stipple::test::same_bytes;
 
 void expect_identical(const Outputs& a, const Outputs& b, const std::string& what) {
     ASSERT_EQ(a.points, b.points) << what;
@@ -65,18 +63,8 @@ void expect_identical(const Outputs& a, const Outputs& b, const std::string& wha
     EXPECT_TRUE(same_bytes(a.draw_sizes, b.draw_sizes)) << what;
 }
 
-class PointStagesTest : public ::testing::Test {
+class PointStagesTest : public stipple::test::Cesium60kFrame {
   protected:
-    void SetUp() override {
-        std::string error;
-        ASSERT_TRUE(stipple::test::load_baked(
-            stipple::test::baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 60000"), &asset_,
-            &error))
-            << error;
-        ASSERT_TRUE(gl_.open(&error)) << error;
-    }
-    void TearDown() override { stipple::point_simd_force(stipple::point_simd_detected()); }
-
     // Pipelines with 1, 2 and 3 threads over `config`, updated at the same frames.
     void compare_threads(stipple::FrameConfig config, const char* name, uint32_t* most_run) {
         std::unique_ptr<Pipeline> p[3];
@@ -105,8 +93,6 @@ class PointStagesTest : public ::testing::Test {
         for (auto& q : p) stipple::pipeline_destroy(q.get());
     }
 
-    stipple::Asset asset_;
-    stipple::test::HeadlessGl gl_;
     uint32_t most_refined_ = 0;
 };
 
