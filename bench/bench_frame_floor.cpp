@@ -13,6 +13,8 @@
 // "occluder": the frame with the depth pass drawing the bake's simplified occluder (OCCL,
 // bake/occluder.h, 10% of the triangles; runtime/renderer_occluder.cpp) instead of the full
 // mesh; the other variants draw the full mesh (the assets carry the section; it is turned off).
+// "before": the frame drawn the way pipeline_frame drew it before the mesh pass went ahead of
+// the point stages and the clear was narrowed (bench/frame_floor_before.h).
 // Each round runs kFrames frames of each, replaying frame k of the clip in all of them.
 // Reports ms per frame (min and median over rounds), frame / floor, fps, process CPU time
 // and the stage times.
@@ -34,6 +36,7 @@
 #include "bake/occluder.h"
 #include "bake/point_hierarchy.h"
 #include "bake/scene_import.h"
+#include "bench/frame_floor_before.h"
 #include "platform/headless_context.h"
 #include "runtime/frame_pipeline.h"
 #include "runtime/gl_program.h"
@@ -65,6 +68,7 @@ struct Case {
     std::vector<double> frame_all_ms;                   // frame, every triangle to the GPU
     std::vector<double> occluder_ms;                    // frame, the occluder's depth pass
     std::vector<stipple::StageTimes> stages;            // per round, per frame
+    frame_floor::Before before;  // the frame drawn the previous way (frame_floor_before.h)
 };
 
 bool bake_file(const std::string& path, uint32_t points, stipple::Asset* out) {
@@ -325,6 +329,17 @@ void run_frames(Case* c, bool all_triangles) {
     c->stages.push_back(t);
 }
 
+void run_before(Case* c) {
+    const double cpu = cpu_ms();
+    const Clock::time_point start = Clock::now();
+    double draw = 0;
+    for (int k = 0; k < kFrames; ++k)
+        draw += frame_floor::frame_before(c->pipeline.get(), c->clip, float(k) / 30.0f);
+    c->before.frame_ms.push_back(ms_between(start, Clock::now()) / kFrames);
+    c->before.frame_cpu.push_back((cpu_ms() - cpu) / kFrames);
+    c->before.draw_ms.push_back(draw / kFrames);
+}
+
 void run_occluder(Case* c) {
     c->pipeline->renderer.occluder_enabled = true;
     const Clock::time_point start = Clock::now();
@@ -498,16 +513,21 @@ int main(int argc, char** argv) {
             return 1;
         }
     for (int r = 0; r < rounds; ++r)
-        for (int i = 0; i < 2; ++i) {  // the order of the six turns every round
-            for (int v = 0; v < 6; ++v) {
-                const int which = (v + r) % 6;
+        for (int i = 0; i < 2; ++i) {  // the order of the seven turns every round
+            for (int v = 0; v < 7; ++v) {
+                const int which = (v + r) % 7;
                 if (which <= 1) run_frames(&cases[i], which == 1);
                 if (which == 2) run_floor(&cases[i], bare[i]);
                 if (which == 3 || which == 4) run_replay(&cases[i], which == 4);
                 if (which == 5) run_occluder(&cases[i]);
+                if (which == 6) run_before(&cases[i]);
             }
         }
     print_tables(cases, rounds);
+    frame_floor::report_before_header();
+    for (const Case& c : cases)
+        frame_floor::report_before(c.name, c.before, c.frame_ms, c.frame_cpu, c.floor_ms,
+                                   stage_median(c, &stipple::StageTimes::draw));
     for (Case& c : cases) stipple::pipeline_destroy(c.pipeline.get());
     return 0;
 }

@@ -62,7 +62,9 @@ Setup* setup(uint32_t points) {
     // The clusters' share of the init: built once more on their own.
     stipple::PointClusters clusters;
     start = std::chrono::steady_clock::now();
-    if (!stipple::point_clusters_init(&clusters, s->asset, s->pipeline->rest_radius.get()).ok())
+    if (!stipple::point_clusters_init(&clusters, s->asset, s->pipeline->baked_radius.get(),
+                                      s->pipeline->rest_radius.get())
+             .ok())
         return nullptr;
     s->clusters_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

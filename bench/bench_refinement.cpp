@@ -6,10 +6,16 @@
 //     (Alg. 6.3) and relevance-updated (Alg. 6.4) every frame — per point of that bake;
 //   - full view (zoom 0.5): what the refinement costs when the baked hierarchy suffices (its
 //     per-vertex and per-triangle checks), per triangle of the domain (~2 per baked point);
-//   - building the triangulation at load, per baked point.
+//   - building the triangulation at load, per baked point;
+//   - the early-out (runtime/refinement_cull.h), CesiumMan at 100k points, bind pose: the
+//     stage as it ran before (every baked point placed, then refine_points) against the culled
+//     one (refinement_cull, then only the active clusters' corners placed and refined), in
+//     interleaved rounds of one run, ns per domain triangle (min and median over rounds) and
+//     their ratio, for a far view (nothing added) and closer ones (some clusters active).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <chrono>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 #include <vector>
@@ -55,7 +61,7 @@ Fixture* fixture(uint32_t points) {
     f->domain.normals = f->bind_normals.data();
     f->domain.indices = f->triangles.indices.get();
     if (!stipple::refinement_init(&f->refinement, f->domain, f->asset.points, f->bind.data(),
-                                  stipple::RefinementDomain::points)
+                                  stipple::RefinementDomain::points, &m)
              .ok())
         return nullptr;
     f->positions.resize(std::max(capacity, n) * 3);
@@ -161,7 +167,82 @@ void BM_TriangulateAtLoad(benchmark::State& state) {
         double(n), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
+// The stage before and after the early-out, interleaved (see the header).
+void BM_RefineEarlyOut(benchmark::State& state) {
+    Fixture* f = fixture(100000);
+    if (!f) return state.SkipWithError("fixture failed");
+    const stipple::SizeParams s = view(*f, float(state.range(0)) / 100.0f);
+    const stipple::MeshView& m = f->asset.mesh;
+    const stipple::PointsView& pts = f->asset.points;
+    stipple::MeshView domain = f->domain;
+    std::vector<float> pos(size_t(pts.point_count) * 3), nrm(size_t(pts.point_count) * 3);
+    domain.positions = pos.data();
+    domain.normals = nrm.data();
+    stipple::RefinementMesh& r = f->refinement;
+    constexpr int kRounds = 7, kReps = 10;
+    std::vector<double> before, after;
+    uint32_t count[2] = {0, 0}, active = 0;
+    using Clock = std::chrono::steady_clock;
+    for (auto _ : state) {
+        for (int round = 0; round < kRounds; ++round) {
+            for (int variant = 0; variant < 2; ++variant) {
+                const Clock::time_point t0 = Clock::now();
+                for (int rep = 0; rep < kReps; ++rep) {
+                    if (variant == 0) {
+                        stipple::place_points(pts, m.indices, m.positions, m.normals, pos.data(),
+                                              nrm.data());
+                        stipple::refine_points(&r, domain, pos.data(), nrm.data(), nullptr, s, true,
+                                               &f->out, nullptr);
+                    } else {
+                        f->out.count = 0;
+                        active = stipple::refinement_cull(&r.cull, m, m.positions, s, true,
+                                                          stipple::refinement_near_w(s));
+                        if (active > 0) {
+                            stipple::place_listed_points(pts, m.indices, m.positions, m.normals,
+                                                         r.cull.list.get(), r.cull.list_count,
+                                                         pos.data(), nrm.data());
+                            stipple::refine_points_culled(&r, domain, pos.data(), nrm.data(), s,
+                                                          true, &f->out, nullptr, nullptr);
+                        }
+                    }
+                    benchmark::ClobberMemory();
+                }
+                const double ns =
+                    std::chrono::duration<double, std::nano>(Clock::now() - t0).count() /
+                    (double(kReps) * domain.triangle_count);
+                (variant == 0 ? before : after).push_back(ns);
+                count[variant] = f->out.count;
+            }
+        }
+    }
+    auto min_median = [](std::vector<double> v, double* lo, double* mid) {
+        std::sort(v.begin(), v.end());
+        *lo = v.front();
+        *mid = v[v.size() / 2];
+    };
+    double b_min, b_med, a_min, a_med;
+    min_median(before, &b_min, &b_med);
+    min_median(after, &a_min, &a_med);
+    state.counters["before_ns_min"] = b_min;
+    state.counters["before_ns_median"] = b_med;
+    state.counters["after_ns_min"] = a_min;
+    state.counters["after_ns_median"] = a_med;
+    state.counters["ratio_min"] = a_min / b_min;
+    state.counters["ratio_median"] = a_med / b_med;
+    state.counters["extra_points"] = double(count[0]);
+    state.counters["same_count"] = double(count[0] == count[1]);
+    state.counters["active_clusters"] = double(active);
+    state.counters["clusters"] = double(r.cull.cluster_count);
+}
+
 BENCHMARK(BM_RefineCloseUp);
+BENCHMARK(BM_RefineEarlyOut)
+    ->Arg(50)
+    ->Arg(300)
+    ->Arg(800)
+    ->Arg(1600)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TriangulateAtLoad);
 BENCHMARK(BM_PlaceAndRelevanceOfADenseBake)->Arg(100000);
 BENCHMARK(BM_RefineFullViewNothingNeeded);

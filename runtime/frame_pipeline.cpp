@@ -16,6 +16,7 @@
 #include "runtime/point_placement.h"
 #include "runtime/point_simd.h"
 #include "runtime/point_stages.h"
+#include "runtime/region_density.h"
 #include "runtime/silhouette.h"
 #include "runtime/stroke_anchor.h"
 
@@ -105,9 +106,9 @@ Status refinement_setup(Pipeline* p) {
             p->refine_on_points = true;
         }
     }
-    return refinement_init(&p->refinement, p->refinement_domain, asset.points,
-                           p->point_positions.get(),
-                           p->refine_on_points ? RefinementDomain::points : RefinementDomain::mesh);
+    return refinement_init(
+        &p->refinement, p->refinement_domain, asset.points, p->point_positions.get(),
+        p->refine_on_points ? RefinementDomain::points : RefinementDomain::mesh, &asset.mesh);
 }
 
 // The pose buffers: three local poses and morph weight sets, two sampling contexts.
@@ -145,10 +146,10 @@ Status alloc_frame_buffers(Pipeline* p) {
         !alloc(&p->skin_matrices, joints) || !alloc(&p->vertex_positions, verts * 3) ||
         !alloc(&p->vertex_normals, verts * 3) || !alloc(&p->point_positions, capacity * 3) ||
         !alloc(&p->point_normals, capacity * 3) || !alloc(&p->rest_radius, points) ||
-        !alloc(&p->radius, capacity) || !alloc(&p->size, capacity) ||
-        !alloc(&p->radius_scale, points) || !alloc(&p->draw_positions, capacity * 3) ||
-        !alloc(&p->draw_sizes, capacity) || !alloc(&p->refined_triangle, budget) ||
-        !alloc(&p->refined_index, budget) ||
+        !alloc(&p->baked_radius, points) || !alloc(&p->radius, capacity) ||
+        !alloc(&p->size, capacity) || !alloc(&p->radius_scale, points) ||
+        !alloc(&p->draw_positions, capacity * 3) || !alloc(&p->draw_sizes, capacity) ||
+        !alloc(&p->refined_triangle, budget) || !alloc(&p->refined_index, budget) ||
         !alloc(&p->triangle_front, asset.mesh.triangle_count) ||
         !alloc(&p->lines, size_t(asset.edges.edge_count) * 6))
         return make_status(StatusCode::out_of_memory, "out of memory for %zu points", capacity);
@@ -170,7 +171,13 @@ Status place_rest_pose(Pipeline* p) {
     const Asset& asset = *p->asset;
     place_points(asset.points, asset.mesh.indices, asset.mesh.positions, asset.mesh.normals,
                  p->point_positions.get(), p->point_normals.get());
-    relevance_scale(asset.points, p->point_positions.get(), p->radius_scale.get());
+    const uint32_t n = asset.points.point_count;
+    if (n > 0) std::memcpy(p->baked_radius.get(), asset.points.radius, size_t(n) * 4);
+    if (!density_corrected_radii(p->point_positions.get(), n, RegionDensityParams(),
+                                 p->baked_radius.get()))  // issue 7: runtime/region_density.h
+        return make_status(StatusCode::out_of_memory, "out of memory for %u points' regions", n);
+    const PointsView points = pipeline_points(*p);
+    relevance_scale(points, p->point_positions.get(), p->radius_scale.get());
     if (p->config.refinement_budget > 0) {
         Status st = refinement_setup(p);
         if (!st.ok()) return st;
@@ -179,8 +186,8 @@ Status place_rest_pose(Pipeline* p) {
     pose_mesh(p, AnimationState(), nullptr, &clock);
     place_points(asset.points, asset.mesh.indices, p->vertex_positions.get(),
                  p->vertex_normals.get(), p->point_positions.get(), p->point_normals.get());
-    recompute_relevance(asset.points, p->point_positions.get(), p->radius_scale.get(),
-                        asset.points.radius, p->rest_radius.get());
+    recompute_relevance(points, p->point_positions.get(), p->radius_scale.get(), points.radius,
+                        p->rest_radius.get());
     setup_camera(p);
     return {};
 }
@@ -226,7 +233,7 @@ Status init_memory(Pipeline* p, const Asset& asset, const FrameConfig& config) {
     if (st.ok()) st = alloc_frame_buffers(p);
     if (st.ok()) st = place_rest_pose(p);
     if (st.ok() && asset.points.point_count > 0)  // Thesis §9.1.1: runtime/point_clusters.h
-        st = point_clusters_init(&p->clusters, asset, p->rest_radius.get());
+        st = point_clusters_init(&p->clusters, asset, p->baked_radius.get(), p->rest_radius.get());
     if (st.ok()) st = stroke_stage_init(&p->strokes, asset, p->config);
     if (st.ok()) st = style_init(&p->style, asset, p->point_capacity);  // runtime/style.h
     if (st.ok() && p->config.particle_style)
@@ -280,31 +287,6 @@ void pipeline_frame(Pipeline* p, int clip, float time, StageTimes* t) {
     pipeline_frame(p, state, t);
 }
 
-void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
-    if (p->particles.enabled) {  // GI'01 strokes instead of stipples
-        pipeline_particle_frame(p, &p->particles, state, t);
-        return;
-    }
-    pipeline_update(p, state, t);
-    Clock::time_point clock = Clock::now();
-    renderer_draw_fill(&p->renderer, p->view_projection, p->vertex_positions.get(),
-                       p->vertex_normals.get(), p->asset->mesh.vertex_count);
-    if (p->strokes.enabled) {  // over the depth pass, into its colour and depth, before the ink
-        renderer_begin_overlay(&p->renderer);
-        stroke_stage_draw(&p->strokes, pipeline_stroke_input(*p));
-    }
-    renderer_draw_line_sets(&p->renderer, p->view_projection, p->lines.get(), p->lines_drawn,
-                            p->style.crease_lines.get(), p->style.creases_drawn);
-    if (p->config.path == FramePath::gpu)  // place, relevance and size run here, on the GPU
-        gpu_path_draw_points(p);
-    else
-        renderer_draw_dots(
-            &p->renderer, p->view_projection, p->draw_positions.get(), p->draw_sizes.get(),
-            p->dots_coloured ? p->style.dot_colours.get() : nullptr, p->points_drawn);
-    p->renderer.gl.Finish();
-    if (t) t->draw += ms_since(&clock);
-}
-
 namespace {
 
 // Where this frame's refinement points live, for their colours (runtime/style.h).
@@ -317,23 +299,19 @@ RefinedHosts refined_hosts(const Pipeline& p) {
     return r;
 }
 
-}  // namespace
-
-void pipeline_update(Pipeline* p, const AnimationState& state, StageTimes* t) {
+// The CPU path's point part: place, relevance, refine and size, then the drawn dots compacted.
+void point_part(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
     const Asset& a = *p->asset;
-    Clock::time_point clock = Clock::now();
-    pose_mesh(p, state, t, &clock);
-    if (p->config.path == FramePath::gpu) return gpu_path_update(p, t);  // runtime/gpu_stages.h
     const bool lod = p->config.lod && p->clusters.cluster_count > 0;
-    pipeline_point_stages(p, lod, t, &clock);  // runtime/frame_point_stages.h
+    pipeline_point_stages(p, lod, t, clock);  // runtime/frame_point_stages.h
     const uint32_t baked = a.points.point_count;
     p->points_drawn = compact_drawn_points(p, lod ? baked : 0, baked + p->refined_count);
     p->dots_coloured = style_dot_colours(&p->style, a, p->config, p->size.get(), refined_hosts(*p));
-    if (t) t->size += ms_since(&clock);
-    pipeline_line_and_stroke_stages(p, t, &clock);
+    if (t) t->size += ms_since(clock);
 }
 
-void pipeline_line_and_stroke_stages(Pipeline* p, StageTimes* t, StageClock::time_point* clock) {
+// Facing, silhouette and crease lines (thesis §3.2, §8.2): they read only the posed mesh.
+void line_stages(Pipeline* p, StageTimes* t, StageClock::time_point* clock) {
     const Asset& a = *p->asset;
     p->lines_drawn = 0;
     const bool creases = p->config.creases && a.looks.crease_count > 0;  // thesis §8.2
@@ -352,7 +330,83 @@ void pipeline_line_and_stroke_stages(Pipeline* p, StageTimes* t, StageClock::tim
                                p->style.crease_lines.get())
                 : 0;
     if (t) t->silhouette += ms_since(clock);
-    stroke_stage_update(&p->strokes, a, pipeline_stroke_input(*p), p->config.stroke_lod_px);
+}
+
+void draw_lines(Pipeline* p) {
+    renderer_draw_line_sets(&p->renderer, p->view_projection, p->lines.get(), p->lines_drawn,
+                            p->style.crease_lines.get(), p->style.creases_drawn);
+}
+
+// What the frame draws over the mesh pass, in order: strokes, lines (unless drawn already),
+// dots; then glFinish.
+void draw_ink(Pipeline* p, bool lines) {
+    if (p->strokes.enabled) {  // over the depth pass, into its colour and depth, before the ink
+        renderer_begin_overlay(&p->renderer);
+        stroke_stage_draw(&p->strokes, pipeline_stroke_input(*p));
+    }
+    if (lines) draw_lines(p);
+    if (p->config.path == FramePath::gpu)  // place, relevance and size run here, on the GPU
+        gpu_path_draw_points(p);
+    else
+        renderer_draw_dots(
+            &p->renderer, p->view_projection, p->draw_positions.get(), p->draw_sizes.get(),
+            p->dots_coloured ? p->style.dot_colours.get() : nullptr, p->points_drawn);
+    p->renderer.gl.Finish();
+}
+
+}  // namespace
+
+// The CPU path submits the mesh pass (and the lines, which come next unless strokes lie
+// between them) as soon as the mesh is posed and its facing known, and flushes it, so the
+// driver fills the depth while this thread runs the point stages (on llvmpipe the rasterizer
+// threads; the dots pass, whose vertex shader reads that depth, would otherwise wait for it
+// with nothing to do). The GL commands and their order are those of pipeline_update followed
+// by the passes: the picture is the same.
+void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
+    if (p->particles.enabled) {  // GI'01 strokes instead of stipples
+        pipeline_particle_frame(p, &p->particles, state, t);
+        return;
+    }
+    const bool gpu = p->config.path == FramePath::gpu;
+    const bool early_lines = !gpu && !p->strokes.enabled;
+    if (gpu) pipeline_update(p, state, t);
+    Clock::time_point clock = Clock::now();
+    if (!gpu) {
+        pose_mesh(p, state, t, &clock);
+        line_stages(p, t, &clock);
+    }
+    renderer_draw_fill(&p->renderer, p->view_projection, p->vertex_positions.get(),
+                       p->vertex_normals.get(), p->asset->mesh.vertex_count);
+    if (early_lines) draw_lines(p);
+    if (!gpu) {
+        p->renderer.gl.Flush();
+        if (t) t->draw += ms_since(&clock);
+        point_part(p, t, &clock);
+        stroke_stage_update(&p->strokes, *p->asset, pipeline_stroke_input(*p),
+                            p->config.stroke_lod_px);
+        if (t) t->strokes += ms_since(&clock);
+    }
+    draw_ink(p, !early_lines);
+    // Dots and lines lie on the mesh, so the next frame clears only its picture
+    // (runtime/renderer_dirty.cpp); paintstrokes reach past it.
+    if (!p->strokes.enabled)
+        renderer_set_drawn_mesh(&p->renderer, p->view_projection, p->vertex_positions.get(),
+                                p->asset->mesh.vertex_count, p->draw_sizes.get(),
+                                gpu ? 0 : p->points_drawn, p->config.max_point_size);
+    if (t) t->draw += ms_since(&clock);
+}
+
+void pipeline_update(Pipeline* p, const AnimationState& state, StageTimes* t) {
+    Clock::time_point clock = Clock::now();
+    pose_mesh(p, state, t, &clock);
+    if (p->config.path == FramePath::gpu) return gpu_path_update(p, t);  // runtime/gpu_stages.h
+    point_part(p, t, &clock);
+    pipeline_line_and_stroke_stages(p, t, &clock);
+}
+
+void pipeline_line_and_stroke_stages(Pipeline* p, StageTimes* t, StageClock::time_point* clock) {
+    line_stages(p, t, clock);
+    stroke_stage_update(&p->strokes, *p->asset, pipeline_stroke_input(*p), p->config.stroke_lod_px);
     if (t) t->strokes += ms_since(clock);
 }
 

@@ -67,7 +67,10 @@ struct Pipeline {
     Buffer<float> radius_scale;                    // point_count, see relevance_scale()
     Buffer<float> draw_positions, draw_sizes;      // the dots with a size, compacted
     Buffer<float> rest_radius;                     // point_count
-    Buffer<float> radius, size;                    // capacity
+    // The baked radii, the coarse ranks' following their prefix's surface density
+    // (runtime/region_density.h): what every stipple stage reads instead of the asset's.
+    Buffer<float> baked_radius;  // point_count
+    Buffer<float> radius, size;  // capacity
     RefinementMesh refinement;
     // The refinement's triangles: a triangulation of the baked points when the bake has enough
     // of them (runtime/point_triangulation.h), else the render mesh.
@@ -144,6 +147,14 @@ StrokeFrameInput pipeline_stroke_input(const Pipeline& p);
 [[nodiscard]] Status pipeline_set_view(Pipeline* p, const FrameConfig& view);
 
 // Points of the last frame: baked ones, then the run-time refinement's.
+// The asset's points with the pipeline's radii (Pipeline::baked_radius), as the stipple stages
+// see them.
+inline PointsView pipeline_points(const Pipeline& p) {
+    PointsView v = p.asset->points;
+    v.radius = p.baked_radius.get();
+    return v;
+}
+
 inline uint32_t pipeline_point_count(const Pipeline& p) {
     return (p.asset ? p.asset->points.point_count : 0) + p.refined_count;
 }

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "runtime/double_sided.h"
+#include "runtime/point_cull.h"
 #include "runtime/point_placement.h"
 #include "runtime/point_stages.h"
 
@@ -42,15 +43,18 @@ void full_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
 }
 
 // The same over the clusters' selection (thesis §9.1.1, runtime/point_clusters.h): the
-// points run are placed, re-scaled and sized; their neighbours only placed; every other
-// baked point keeps size 0.
+// points run are placed; those whose size can be non-zero (the per-point cull,
+// runtime/point_cull.h) re-scaled and sized; their neighbours only placed; every other baked
+// point keeps size 0.
 void lod_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
     const Asset& a = *p->asset;
     PointClusters& c = p->clusters;
-    if (p->lod_sizes_clear)
+    if (p->lod_sizes_clear) {
         point_clusters_clear_sizes(c, p->size.get());
-    else
+    } else {  // also the radii the cull will skip: defined (the rest pose's) until computed
         std::fill(p->size.get(), p->size.get() + a.points.point_count, 0.0f);
+        std::memcpy(p->radius.get(), p->rest_radius.get(), size_t(a.points.point_count) * 4);
+    }
     p->lod_sizes_clear = true;
     LodFrame frame;
     frame.vertex_positions = p->vertex_positions.get();
@@ -58,6 +62,7 @@ void lod_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
     frame.params = &p->size_params;
     frame.viewport_width = p->viewport_width;
     frame.relevance_update = p->config.relevance_update;
+    frame.pool = &p->pool;  // the clusters' tests over the threads (the same selection)
     const uint32_t baked = a.points.point_count;  // hierarchy_running_out's finest quarter
     if (p->config.refinement_budget > 0) frame.size_from = baked - baked / 4;
     point_clusters_select(&c, a, frame);
@@ -68,12 +73,21 @@ void lod_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
                                     p->point_positions.get(), p->point_normals.get(),
                                     p->size_params.eye);
     if (t) t->place += ms_since(clock);
-    if (p->config.relevance_update)
+    // The per-point cull, relevance and size in one pass (runtime/point_cull.h): the run
+    // points' sizes are 0 here (cleared above), and stay so where the bound says size 0.
+    if (point_cull_enabled()) {
+        c.stats.points_sized = point_stage_cull_relevance_size(
+            &p->pool, f, c, p->config.relevance_update, run, c.run_count);
+        if (t) t->relevance += ms_since(clock);  // the fused pass: relevance and size
+        return;
+    }
+    if (p->config.relevance_update)  // without the cull (benches, tests): every run point
         point_stage_relevance(&p->pool, f, run, c.run_count);
     else
         for (uint32_t j = 0; j < c.run_count; ++j) p->radius[run[j]] = p->rest_radius[run[j]];
     if (t) t->relevance += ms_since(clock);
     point_stage_size(&p->pool, f, run, c.run_count);
+    c.stats.points_sized = c.run_count;
     if (t) t->size += ms_since(clock);
 }
 

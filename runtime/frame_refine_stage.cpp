@@ -6,6 +6,32 @@
 
 namespace stipple {
 
+namespace {
+
+// The corners of the active clusters (cull.list) the selection did not place, placed; those
+// it did not turn to the eye, turned (double-sided points), as for every corner below.
+void place_culled_corners(Pipeline* p) {
+    const RefinementCull& cull = p->refinement.cull;
+    const PointClusters& c = p->clusters;
+    uint32_t* scratch = p->clusters.rest.get();
+    for (int set = 0; set < 2; ++set) {
+        const uint64_t* bits = (set == 0 ? c.placed_bits : c.run_bits).get();
+        uint32_t n = 0;
+        for (uint32_t j = 0; j < cull.list_count; ++j) {
+            const uint32_t i = cull.list[j];
+            if (!(bits[i / 64] >> (i % 64) & 1u)) scratch[n++] = i;
+        }
+        if (set == 0)
+            point_stage_place(&p->pool, point_stage_frame(p), scratch, n);
+        else
+            face_listed_double_sided_points(scratch, n, p->point_double_sided.get(),
+                                            p->point_positions.get(), p->point_normals.get(),
+                                            p->size_params.eye);
+    }
+}
+
+}  // namespace
+
 // The run-time refinement (runtime/point_refinement.h) after the baked points are sized.
 void pipeline_refine_stage(Pipeline* p, bool lod, StageTimes* t, StageClock::time_point* clock) {
     const Asset& a = *p->asset;
@@ -17,7 +43,24 @@ void pipeline_refine_stage(Pipeline* p, bool lod, StageTimes* t, StageClock::tim
     extra.radius = p->radius.get() + baked;
     extra.triangle = p->refined_triangle.get();
     extra.index = p->refined_index.get();
-    if (p->refine_on_points) {  // corners are the baked points, as placed this frame
+    if (p->refine_on_points && p->refinement.cull.cluster_count > 0) {
+        // Only the clusters where a point can be added (runtime/refinement_cull.h): when none
+        // is, the stage ends here, before any baked point is placed for it.
+        RefinementCull& cull = p->refinement.cull;
+        if (refinement_cull(&cull, a.mesh, p->vertex_positions.get(), p->size_params,
+                            p->config.relevance_update, refinement_near_w(p->size_params)) == 0) {
+            p->refined_count = 0;
+            if (t) t->refine += ms_since(clock);
+            return;
+        }
+        if (lod) place_culled_corners(p);
+        MeshView domain = p->refinement_domain;
+        domain.positions = p->point_positions.get();
+        domain.normals = p->point_normals.get();
+        refine_points_culled(&p->refinement, domain, domain.positions, domain.normals,
+                             p->size_params, p->config.relevance_update, &extra,
+                             &p->refinement_stats, &p->pool);
+    } else if (p->refine_on_points) {  // corners are the baked points, as placed this frame
         if (lod) {  // every corner, not only the selection (close-ups: the cut keeps most):
             // the points the selection did not place, then those it did not turn to the eye
             PointClusters& c = p->clusters;

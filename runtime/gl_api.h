@@ -93,7 +93,9 @@ namespace stipple {
     X(PFNGLUNIFORM1FVPROC, Uniform1fv)                               \
     X(PFNGLVERTEXATTRIBDIVISORPROC, VertexAttribDivisor)             \
     X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)             \
-    X(PFNGLUNIFORM4FVPROC, Uniform4fv)
+    X(PFNGLUNIFORM4FVPROC, Uniform4fv)                               \
+    X(PFNGLFLUSHPROC, Flush)                                         \
+    X(PFNGLSCISSORPROC, Scissor)
 
 struct GlApi {
 #define STIPPLE_GL_MEMBER(type, name) type name = nullptr;

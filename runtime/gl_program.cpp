@@ -47,4 +47,9 @@ GLuint link_gl_program(const GlApi& gl, const char* vertex_source, const char* f
     return p;
 }
 
+void gl_uniform_locations(const GlApi& gl, GLuint program,
+                          std::initializer_list<GlUniform> uniforms) {
+    for (const GlUniform& u : uniforms) *u.location = gl.GetUniformLocation(program, u.name);
+}
+
 }  // namespace stipple

@@ -4,6 +4,7 @@
 
 #include "runtime/frame_pipeline.h"
 #include "runtime/frame_pose.h"
+#include "runtime/gl_program.h"
 #include "runtime/silhouette.h"
 #include "runtime/stage_clock.h"
 
@@ -174,13 +175,14 @@ void create_dots(GpuStages* g) {
 void find_uniforms(GpuStages* g) {
     const GlApi& gl = g->gl;
     const GLuint p = g->program;
-    g->u_view_projection = gl.GetUniformLocation(p, "u_view_projection");
-    g->u_eye_focal = gl.GetUniformLocation(p, "u_eye_focal");
-    g->u_size = gl.GetUniformLocation(p, "u_size");
-    g->u_lights = gl.GetUniformLocation(p, "u_lights");
-    g->u_light_count = gl.GetUniformLocation(p, "u_light_count");
-    g->u_ambient = gl.GetUniformLocation(p, "u_ambient");
-    g->u_ink = gl.GetUniformLocation(p, "u_ink");
+    gl_uniform_locations(gl, p,
+                         {{&g->u_view_projection, "u_view_projection"},
+                          {&g->u_eye_focal, "u_eye_focal"},
+                          {&g->u_size, "u_size"},
+                          {&g->u_lights, "u_lights"},
+                          {&g->u_light_count, "u_light_count"},
+                          {&g->u_ambient, "u_ambient"},
+                          {&g->u_ink, "u_ink"}});
     gl.UseProgram(p);
     const char* samplers[4] = {"u_vertex_positions", "u_vertex_normals", "u_points",
                                "u_neighbours"};

@@ -216,11 +216,16 @@ Status cluster_lists(PointClusters* c, const Asset& a, const uint32_t* tri_clust
 
 // Radius bounds along `order`, as suffix maxima per cluster; which clusters back-face culling
 // may skip (single-sided triangles, barycentric weights in [0, 1]).
-Status cluster_bounds(PointClusters* c, const Asset& a, const float* rest_radius) {
+Status cluster_bounds(PointClusters* c, const Asset& a, const float* radius,
+                      const float* rest_radius) {
     const uint32_t n = a.points.point_count;
     if (!alloc(&c->bound, n) || !alloc(&c->line_bound, n) || !alloc(&c->rest_bound, n) ||
-        !alloc(&c->single_sided, c->cluster_count))
+        !alloc(&c->single_sided, c->cluster_count) || !alloc(&c->point_area_bound, n) ||
+        !alloc(&c->point_line_bound, n) || !alloc(&c->point_cluster, n) ||
+        !alloc(&c->cluster_factor, size_t(c->cluster_count) * 2))
         return make_status(StatusCode::out_of_memory, "out of memory for %u points", n);
+    std::fill(c->cluster_factor.get(), c->cluster_factor.get() + size_t(c->cluster_count) * 2,
+              0.0f);
     const PointsView& p = a.points;
     const uint8_t* double_sided = a.sides.triangle_double_sided;
     for (uint32_t k = 0; k < c->cluster_count; ++k) {
@@ -229,8 +234,11 @@ Status cluster_bounds(PointClusters* c, const Asset& a, const float* rest_radius
         for (uint32_t j = c->point_begin[k + 1]; j-- > c->point_begin[k];) {
             const uint32_t i = c->order[j];
             const int measure = relevance_measure(a, i);
-            if (measure & 1) bound = std::max(bound, p.radius[i]);
-            if (measure & 2) line = std::max(line, p.radius[i]);
+            if (measure & 1) bound = std::max(bound, radius[i]);
+            if (measure & 2) line = std::max(line, radius[i]);
+            c->point_area_bound[i] = (measure & 1) ? radius[i] : 0.0f;
+            c->point_line_bound[i] = (measure & 2) ? radius[i] : 0.0f;
+            c->point_cluster[i] = k;
             rest = std::max(rest, rest_radius[i]);
             c->bound[j] = bound;
             c->line_bound[j] = line;
@@ -247,13 +255,16 @@ Status cluster_bounds(PointClusters* c, const Asset& a, const float* rest_radius
 // Paintstroke roots the stroke stage reads (runtime/stroke_stage.cpp): run every frame.
 Status forced_points(PointClusters* c, const Asset& a) {
     const StrokesView& s = a.strokes;
-    if (!alloc(&c->forced, s.stroke_count))
+    if (!alloc(&c->forced, s.stroke_count) || !alloc(&c->forced_bits, c->word_count))
         return make_status(StatusCode::out_of_memory, "out of memory for stroke roots");
+    std::fill(c->forced_bits.get(), c->forced_bits.get() + c->word_count, uint64_t(0));
     c->forced_count = 0;
-    for (uint32_t i = 0; i < s.stroke_count; ++i)
-        if (s.strokes[i].root_point != format::kNoRootPoint &&
-            s.strokes[i].root_point < a.points.point_count)
-            c->forced[c->forced_count++] = s.strokes[i].root_point;
+    for (uint32_t i = 0; i < s.stroke_count; ++i) {
+        const uint32_t root = s.strokes[i].root_point;
+        if (root == format::kNoRootPoint || root >= a.points.point_count) continue;
+        c->forced[c->forced_count++] = root;
+        c->forced_bits[root >> 6] |= uint64_t(1) << (root & 63);
+    }
     return {};
 }
 
@@ -318,19 +329,21 @@ Status closure_lists(PointClusters* c, const PointsView& p) {
 
 }  // namespace
 
-Status point_clusters_init(PointClusters* c, const Asset& a, const float* rest_radius) {
+Status point_clusters_init(PointClusters* c, const Asset& a, const float* baked_radius,
+                           const float* rest_radius) {
     *c = PointClusters();
     c->point_count = a.points.point_count;
+    c->word_count = (c->point_count + 63) / 64;
     Buffer<uint32_t> tri_cluster;
     Status st = group_triangles(c, a, &tri_cluster);
     if (st.ok()) st = sort_points(c, a, tri_cluster.get());
     if (st.ok()) st = cluster_lists(c, a, tri_cluster.get());
-    if (st.ok()) st = cluster_bounds(c, a, rest_radius);
+    if (st.ok()) st = cluster_bounds(c, a, baked_radius, rest_radius);
     if (st.ok()) st = forced_points(c, a);
     if (st.ok()) st = bind_grams(c, a);
     if (st.ok()) st = closure_lists(c, a.points);
-    c->word_count = (c->point_count + 63) / 64;
     if (st.ok() && (!alloc(&c->run, c->point_count) || !alloc(&c->placed, c->point_count) ||
+                    !alloc(&c->keep, c->cluster_count) || !alloc(&c->keep_kind, c->cluster_count) ||
                     !alloc(&c->rest, c->point_count) || !alloc(&c->run_bits, c->word_count) ||
                     !alloc(&c->placed_bits, c->word_count)))
         st = make_status(StatusCode::out_of_memory, "out of memory for %u points", c->point_count);

@@ -27,6 +27,7 @@
 #include "runtime/memory.h"
 #include "runtime/status.h"
 #include "runtime/stipple_size.h"
+#include "runtime/thread_pool.h"
 
 namespace stipple {
 
@@ -38,6 +39,9 @@ struct LodStats {
     uint32_t cut = 0;             // clusters run only up to a prefix
     uint32_t points_run = 0;      // points placed, relevance recomputed and sized
     uint32_t points_placed = 0;   // points_run plus the neighbours they read
+    // Run points the per-point cull (runtime/point_cull.h) kept for relevance and size; set
+    // by point_stage_cull_relevance_size (0 until it runs).
+    uint32_t points_sized = 0;
 };
 
 struct PointClusters {
@@ -71,6 +75,18 @@ struct PointClusters {
     Buffer<uint32_t> closure_begin, closure;
     Buffer<uint32_t> forced;  // points run every frame (paintstroke roots)
     uint32_t forced_count = 0;
+    Buffer<uint64_t> forced_bits;  // the same as a bit set (64 points a word)
+    // The per-point cull after place (runtime/point_cull.h): per point (asset order) its bind
+    // radius where Alg. 6.4 re-scales it by the area measure and where by the mean distance
+    // (0 where not; both near the threshold), and its cluster; per cluster,
+    // per frame, the factors the cut multiplied those radii by (its stretches, 1 on a static
+    // mesh) over the cut's 0.99 margin, 2 floats a cluster (set for every cluster not culled).
+    Buffer<float> point_area_bound, point_line_bound, cluster_factor;
+    Buffer<uint32_t> point_cluster;
+    // Per cluster, per frame (scratch of the selection over the thread pool): the prefix kept
+    // and what the tests decided (LodStats).
+    Buffer<uint32_t> keep;
+    Buffer<uint8_t> keep_kind;
     // Per frame: the points run (placed, relevance, sized) and the points placed (the run ones
     // and the neighbours they read), both ascending; bit sets of both (64 points a word).
     // (Ascending beats cluster by cluster: measured on the horse, placing in cluster order read
@@ -93,10 +109,11 @@ inline bool bind_area_defined(const float* gram) {
 
 // Builds the clusters of `asset`'s baked points: triangles grouped by dominant joint (skinned
 // meshes) and a grid cell of their bind-pose centroid; per cluster its vertices, its reach
-// and the radius bounds. `rest_radius` holds the rest-pose radii (point_count). Fails only
+// and the radius bounds. `baked_radius` holds the radii the stages use in the bake's space
+// (Pipeline::baked_radius), `rest_radius` the rest-pose radii (point_count each). Fails only
 // with out_of_memory.
 [[nodiscard]] Status point_clusters_init(PointClusters* c, const Asset& asset,
-                                         const float* rest_radius);
+                                         const float* baked_radius, const float* rest_radius);
 
 // What one frame's selection sees.
 struct LodFrame {
@@ -109,6 +126,9 @@ struct LodFrame {
     // drawn) when the cut keeps them: the pipeline asks whether the finest quarter of the bake
     // has a size anywhere to decide on the run-time refinement (hierarchy_running_out).
     uint32_t size_from = UINT32_MAX;
+    // The clusters' tests and the triangles' stretches split over this pool (null: the
+    // caller alone); the selection is the same for any thread count.
+    ThreadPool* pool = nullptr;
 };
 
 // Chooses the frame's points: c->run[0 .. run_count) are placed, re-scaled and sized,

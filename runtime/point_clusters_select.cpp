@@ -187,45 +187,68 @@ bool cut_reaches(const PointClusters& c, uint32_t k, uint32_t keep, uint32_t fro
     return keep > 0 && c.order[c.point_begin[k] + keep - 1] >= from;
 }
 
-// How many of cluster k's points can draw this frame (0: culled), counted in *s.
+// What cluster_keep decided (LodStats), bits: cut to a prefix, culled by the frustum or as
+// back-facing.
+constexpr uint8_t kKindCut = 1, kKindFrustum = 2, kKindBack = 4;
+
+// How many of cluster k's points can draw this frame (0: culled), what decided it in *kind.
+// Sets the cluster's cull factors (point_clusters.h) when it is not culled.
 uint32_t cluster_keep(PointClusters* c, uint32_t k, const LodFrame& f, bool stretches, float focal,
-                      const InkBound& ink, LodStats* s) {
+                      const InkBound& ink, uint8_t* kind) {
     const SizeParams& params = *f.params;
     const glm::vec2 margin(2.0f / float(std::max(f.viewport_width, 1)),
                            2.0f / std::max(params.viewport_height, 1.0f));
     const Box b = cluster_box(*c, k, f.vertex_positions);
     float w_min;
     const bool outside = outside_frustum(b, params.view_projection, margin, &w_min);
+    *kind = 0;
     if (c->single_sided[k] && faces_away(*c, k, b, f.vertex_normals, params.eye)) {
-        ++s->culled_back;
+        *kind = kKindBack;
         return 0;
     }
     const uint32_t total = c->point_begin[k + 1] - c->point_begin[k];
     if (outside && !cut_reaches(*c, k, total, f.size_from)) {
-        ++s->culled_frustum;
+        *kind = kKindFrustum;
         return 0;
     }
+    // The cut's radius factors, also for the per-point cull after place (runtime/point_cull.h):
+    // the same stretches over the same 0.99 margin as cut_per_w.
+    const Stretch st = stretches ? cluster_stretches(*c, k) : Stretch{1.0f, 1.0f};
+    c->cluster_factor[size_t(k) * 2] = st.area / 0.99f;
+    c->cluster_factor[size_t(k) * 2 + 1] = st.edges / 0.99f;
     if (!(w_min > 0.0f)) return total;
     const float lit = least_lighting(*c, k, f.vertex_normals, params);
     const float threshold = cut_per_w(params, focal, ink.at(lit)) * w_min;
     uint32_t keep;
     if (!f.relevance_update)  // the rest-pose radii as they are
         keep = cut_length(*c, k, c->rest_bound.get(), 1.0f, threshold);
-    else if (!stretches)  // a static mesh: the bind radii
-        keep = std::max(cut_length(*c, k, c->bound.get(), 1.0f, threshold),
-                        cut_length(*c, k, c->line_bound.get(), 1.0f, threshold));
-    else {
-        const Stretch st = cluster_stretches(*c, k);
+    else  // a static mesh: the bind radii (stretches 1)
         keep = std::max(cut_length(*c, k, c->bound.get(), st.area, threshold),
                         cut_length(*c, k, c->line_bound.get(), st.edges, threshold));
-    }
-    s->cut += keep < total;
+    *kind = keep < total ? kKindCut : 0;
     if (outside && !cut_reaches(*c, k, keep, f.size_from)) {  // the cut ends before size_from
-        ++s->culled_frustum;
+        *kind |= kKindFrustum;
         return 0;
     }
     return keep;
 }
+
+// cluster_keep over a range of clusters (a thread's; each writes only its own clusters').
+struct KeepTask {
+    PointClusters* c;
+    const LodFrame* f;
+    bool stretches;
+    float focal;
+    const InkBound* ink;
+};
+void keep_range(void* context, uint32_t begin, uint32_t end) {
+    const KeepTask& t = *static_cast<const KeepTask*>(context);
+    for (uint32_t k = begin; k < end; ++k)
+        t.c->keep[k] = cluster_keep(t.c, k, *t.f, t.stretches, t.focal, *t.ink, &t.c->keep_kind[k]);
+}
+
+// Below this many clusters (triangles) per thread the selection's loops run on the caller.
+constexpr uint32_t kMinClustersPerThread = 64, kMinTrianglesPerThread = 4096;
 
 }  // namespace
 
@@ -234,14 +257,18 @@ uint32_t cluster_keep(PointClusters* c, uint32_t k, const LodFrame& f, bool stre
 // square root of the area ratio; the mean-distance measure with the edge lengths, bounded by
 // the largest edge ratio. A degenerate bind triangle takes its edge ratio for both. Kept as
 // squares here (no root per triangle): cluster_stretches takes the roots of the largest.
-void point_clusters_stretch(PointClusters* c, const MeshView& m, const float* posed) {
+namespace {
+
+void stretch_triangles(PointClusters* c, const MeshView& m, const float* posed, uint32_t begin,
+                       uint32_t end) {
     float* area_ratio = c->area_ratio.get();
     float* edge_ratio = c->edge_ratio.get();
     const float* gram = c->bind_gram.get();
-    uint32_t t = 0;  // runtime/point_simd.h: the same bits 8 triangles at a time
+    uint32_t t = begin;  // runtime/point_simd.h: the same bits 8 triangles at a time
     if (point_simd() == PointSimd::avx2)
-        t = triangle_stretch_avx2(m.indices, posed, gram, m.triangle_count, area_ratio, edge_ratio);
-    for (; t < m.triangle_count; ++t) {
+        t += triangle_stretch_avx2(m.indices + size_t(begin) * 3, posed, gram + size_t(begin) * 3,
+                                   end - begin, area_ratio + begin, edge_ratio + begin);
+    for (; t < end; ++t) {
         const uint32_t* tri = m.indices + size_t(t) * 3;
         const glm::vec3 o = glm::make_vec3(vertex(posed, tri[0]));
         const glm::vec3 e1 = glm::make_vec3(vertex(posed, tri[1])) - o;
@@ -258,12 +285,35 @@ void point_clusters_stretch(PointClusters* c, const MeshView& m, const float* po
     }
 }
 
+struct StretchTask {
+    PointClusters* c;
+    const MeshView* m;
+    const float* posed;
+};
+void stretch_range(void* context, uint32_t begin, uint32_t end) {
+    const StretchTask& t = *static_cast<const StretchTask*>(context);
+    stretch_triangles(t.c, *t.m, t.posed, begin, end);
+}
+
+}  // namespace
+
+void point_clusters_stretch(PointClusters* c, const MeshView& m, const float* posed) {
+    stretch_triangles(c, m, posed, 0, m.triangle_count);
+}
+
 void point_clusters_select(PointClusters* c, const Asset& asset, const LodFrame& f) {
     const SizeParams& params = *f.params;
     const bool stretches = c->deforming && f.relevance_update;
-    if (stretches) point_clusters_stretch(c, asset.mesh, f.vertex_positions);
-    const float focal = focal_pixels(params);
+    ThreadPool one;  // no pool: the caller alone
+    ThreadPool* pool = f.pool ? f.pool : &one;
+    if (stretches) {
+        StretchTask task{c, &asset.mesh, f.vertex_positions};
+        thread_pool_run(pool, asset.mesh.triangle_count, kMinTrianglesPerThread, stretch_range,
+                        &task);
+    }
     const InkBound ink(params);
+    KeepTask task{c, &f, stretches, focal_pixels(params), &ink};
+    thread_pool_run(pool, c->cluster_count, kMinClustersPerThread, keep_range, &task);
     LodStats s;
     s.clusters = c->cluster_count;
     uint64_t* bits = c->run_bits.get();
@@ -273,8 +323,11 @@ void point_clusters_select(PointClusters* c, const Asset& asset, const LodFrame&
     const uint32_t* order = c->order.get();
     const uint32_t* closure = c->closure.get();
     for (uint32_t k = 0; k < c->cluster_count; ++k) {
-        const uint32_t keep = cluster_keep(c, k, f, stretches, focal, ink, &s);
-        const uint32_t begin = c->point_begin[k], end = begin + keep;
+        const uint8_t kind = c->keep_kind[k];
+        s.culled_back += (kind & kKindBack) != 0;
+        s.culled_frustum += (kind & kKindFrustum) != 0;
+        s.cut += (kind & kKindCut) != 0;
+        const uint32_t begin = c->point_begin[k], end = begin + c->keep[k];
         for (uint32_t j = begin; j < end; ++j) set_bit(bits, order[j]);
         for (uint32_t e = c->closure_begin[begin]; e < c->closure_begin[end]; ++e)
             set_bit(placed, closure[e]);  // the neighbours the prefix does not hold

@@ -7,6 +7,7 @@
 
 #include "runtime/refinement_order.h"
 #include "runtime/refinement_sequence.h"
+#include "runtime/thread_pool.h"
 
 namespace stipple {
 
@@ -29,6 +30,7 @@ struct Traversal {
     uint64_t work;   // points generated or culled by emit() in this pass
     uint64_t work_limit;
     bool full() const { return wanted >= limit || work >= work_limit; }
+    uint8_t* probe = nullptr;  // set: refine_one_triangle marks the triangles it would refine
     // Current triangle.
     uint32_t t;
     const uint32_t* tri;
@@ -171,8 +173,18 @@ void refine_triangle(Traversal* s, uint32_t t) {
 
 }  // namespace
 
+namespace {
+
+Status refinement_no_memory(uint32_t n) {
+    return make_status(StatusCode::out_of_memory,
+                       "out of memory for the run-time refinement of %u triangles", n);
+}
+
+}  // namespace
+
 Status refinement_init(RefinementMesh* r, const MeshView& mesh, const PointsView& points,
-                       const float* bind_point_positions, RefinementDomain domain) {
+                       const float* bind_point_positions, RefinementDomain domain,
+                       const MeshView* host) {
     *r = RefinementMesh();
     const uint32_t n = mesh.triangle_count;
     r->triangle_count = n;
@@ -183,8 +195,7 @@ Status refinement_init(RefinementMesh* r, const MeshView& mesh, const PointsView
         !alloc(&r->fade, n) || !alloc(&r->vertex, mesh.vertex_count) ||
         !alloc(&r->vertex_outside, mesh.vertex_count) ||
         !alloc(&r->vertex_need, mesh.vertex_count) || !alloc(&r->vertex_w, mesh.vertex_count))
-        return make_status(StatusCode::out_of_memory,
-                           "out of memory for the run-time refinement of %u triangles", n);
+        return refinement_no_memory(n);
     // Bind-pose area and isometric frame (A at the origin, B on the x axis) per triangle.
     double total_area = 0.0;
     for (uint32_t t = 0; t < n; ++t) {
@@ -247,9 +258,11 @@ Status refinement_init(RefinementMesh* r, const MeshView& mesh, const PointsView
     }
     if (!first_point_phases(n, first.get(), r->bind_area.get(), points.point_count,
                             bind_point_positions, r->phase.get()))
-        return make_status(StatusCode::out_of_memory,
-                           "out of memory for the run-time refinement of %u triangles", n);
-    return {};
+        return refinement_no_memory(n);
+    return domain == RefinementDomain::points && host
+               ? refinement_cull_init(&r->cull, mesh, *host, points, r->bind_area.get(),
+                                      r->density.get(), r->phase.get())
+               : Status{};
 }
 
 namespace {
@@ -272,27 +285,48 @@ float near_plane_w(const SizeParams& params) {
 
 // Per posed vertex: clip position, which frustum planes it lies outside, and the ink the
 // size rule needs there for each side (N.V times the ink of its lighting).
+void classify_vertex(RefinementMesh* r, const float* positions, const float* normals,
+                     const SizeParams& params, const InkTable& ink, uint32_t i) {
+    const glm::mat4& m = params.view_projection;
+    const glm::vec3 p(positions[i * 3], positions[i * 3 + 1], positions[i * 3 + 2]);
+    const glm::vec3 n(normals[i * 3], normals[i * 3 + 1], normals[i * 3 + 2]);
+    const glm::vec3 to_eye = params.eye - p;
+    const float len = glm::length(to_eye);
+    const float n_dot_v = len > 0.0f ? glm::dot(n, to_eye) / len : 0.0f;
+    const glm::vec4 c = m * glm::vec4(p, 1.0f);
+    r->vertex[i].clip = c;
+    r->vertex[i].outside = uint32_t(c.x < -c.w) | uint32_t(c.x > c.w) << 1 |
+                           uint32_t(c.y < -c.w) << 2 | uint32_t(c.y > c.w) << 3 |
+                           uint32_t(c.z < -c.w) << 4 | uint32_t(c.z > c.w) << 5;
+    r->vertex[i].need = n_dot_v > 0.0f ? n_dot_v * ink.at(lighting(params, n)) : 0.0f;
+    r->vertex[i].need_back = n_dot_v < 0.0f ? -n_dot_v * ink.at(lighting(params, -n)) : 0.0f;
+    r->vertex_outside[i] = uint8_t(r->vertex[i].outside);
+    r->vertex_need[i] = r->vertex[i].need;
+    r->vertex_w[i] = c.w;
+}
+
 void classify_vertices(RefinementMesh* r, const MeshView& mesh, const float* positions,
                        const float* normals, const SizeParams& params) {
-    const glm::mat4& m = params.view_projection;
     const InkTable ink(params);
-    for (uint32_t i = 0; i < mesh.vertex_count; ++i) {
-        const glm::vec3 p(positions[i * 3], positions[i * 3 + 1], positions[i * 3 + 2]);
-        const glm::vec3 n(normals[i * 3], normals[i * 3 + 1], normals[i * 3 + 2]);
-        const glm::vec3 to_eye = params.eye - p;
-        const float len = glm::length(to_eye);
-        const float n_dot_v = len > 0.0f ? glm::dot(n, to_eye) / len : 0.0f;
-        const glm::vec4 c = m * glm::vec4(p, 1.0f);
-        r->vertex[i].clip = c;
-        r->vertex[i].outside = uint32_t(c.x < -c.w) | uint32_t(c.x > c.w) << 1 |
-                               uint32_t(c.y < -c.w) << 2 | uint32_t(c.y > c.w) << 3 |
-                               uint32_t(c.z < -c.w) << 4 | uint32_t(c.z > c.w) << 5;
-        r->vertex[i].need = n_dot_v > 0.0f ? n_dot_v * ink.at(lighting(params, n)) : 0.0f;
-        r->vertex[i].need_back = n_dot_v < 0.0f ? -n_dot_v * ink.at(lighting(params, -n)) : 0.0f;
-        r->vertex_outside[i] = uint8_t(r->vertex[i].outside);
-        r->vertex_need[i] = r->vertex[i].need;
-        r->vertex_w[i] = c.w;
-    }
+    for (uint32_t i = 0; i < mesh.vertex_count; ++i)
+        classify_vertex(r, positions, normals, params, ink, i);
+}
+
+// The same over the listed vertices, in ranges over the thread pool (each writes only its own
+// vertices' entries: byte-identical for any thread count).
+struct ClassifyTask {
+    RefinementMesh* r;
+    const float* positions;
+    const float* normals;
+    const SizeParams* params;
+    const InkTable* ink;
+    const uint32_t* list;
+};
+
+void classify_range(void* context, uint32_t begin, uint32_t end) {
+    const ClassifyTask& k = *static_cast<const ClassifyTask*>(context);
+    for (uint32_t j = begin; j < end; ++j)
+        classify_vertex(k.r, k.positions, k.normals, *k.params, *k.ink, k.list[j]);
 }
 
 // Triangle t for one pass: skips it when the wanted density stays under what the bake already
@@ -348,16 +382,68 @@ void refine_one_triangle(RefinementMesh* r, Traversal* s, bool stretch, uint32_t
     r->fade[t] = std::sqrt(1.0f - h);
     s->density = (1.0f - h) * baked;
     if (stretched < s->density + first) return;
+    if (s->probe) {
+        s->probe[t] = 1;
+        return;
+    }
     refine_triangle(s, t);
 }
 
 }  // namespace
 
-void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positions,
+namespace {
+
+// The per-triangle tests of refine_one_triangle at scale 1 over the active clusters'
+// triangles, in ranges over the pool: cull->candidate[t] = 1 where the triangle would refine.
+// Each range writes only its triangles' marks (and fades: 1 in the points domain).
+struct ProbeTask {
+    RefinementMesh* r;
+    const Traversal* s;
+    bool stretch;
+    RefinementCull* cull;
+};
+
+void probe_range(void* context, uint32_t begin, uint32_t end) {
+    const ProbeTask& k = *static_cast<const ProbeTask*>(context);
+    Traversal s = *k.s;
+    s.scale = 1.0f;
+    s.probe = k.cull->candidate.get();
+    const RefinementCull& c = *k.cull;
+    for (uint32_t j = begin; j < end; ++j) {
+        const uint32_t cluster = c.active_list[j];
+        for (uint32_t i = c.tri_begin[cluster]; i < c.tri_begin[cluster + 1]; ++i) {
+            const uint32_t t = c.triangles[i];
+            s.probe[t] = 0;
+            refine_one_triangle(k.r, &s, k.stretch, t);
+        }
+    }
+}
+
+// Probes the active clusters' triangles over the pool, then lists those marked, ascending
+// (the order refine_points visits them in); returns how many.
+uint32_t probe_triangles(RefinementMesh* r, const Traversal& s, bool stretch, RefinementCull* cull,
+                         ThreadPool* pool) {
+    ProbeTask task{r, &s, stretch, cull};
+    constexpr uint32_t kMinClustersPerThread = 16;
+    if (pool)
+        thread_pool_run(pool, cull->active_count, kMinClustersPerThread, probe_range, &task);
+    else
+        probe_range(&task, 0, cull->active_count);
+    uint32_t n = 0;
+    for (uint32_t j = 0; j < cull->active_count; ++j) {
+        const uint32_t cluster = cull->active_list[j];
+        for (uint32_t i = cull->tri_begin[cluster]; i < cull->tri_begin[cluster + 1]; ++i)
+            if (cull->candidate[cull->triangles[i]]) cull->refine_list[n++] = cull->triangles[i];
+    }
+    std::sort(cull->refine_list.get(), cull->refine_list.get() + n);
+    return n;
+}
+
+// The passes of refine_points over every triangle, or over the active clusters' (cull).
+void refine_passes(RefinementMesh* r, const MeshView& mesh, const float* positions,
                    const float* normals, const uint8_t* double_sided, const SizeParams& params,
-                   bool stretch, RefinedPoints* out, RefinementStats* stats) {
-    out->count = 0;
-    classify_vertices(r, mesh, positions, normals, params);
+                   bool stretch, RefinedPoints* out, RefinementStats* stats, RefinementCull* cull,
+                   ThreadPool* pool) {
     const float focal = focal_pixels(params);
     const float dot_area = 0.785398163f * params.max_point_size * params.max_point_size;
     Traversal s;
@@ -387,10 +473,17 @@ void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positio
     const float saturated_step = 0.98f * float(capacity) / float(s.limit) / 16.0f;
     s.scale = 1.0f;
     bool from_count = false;  // the scale came from a whole count: that pass is the last
+    uint32_t marked = 0;      // culled: the triangles the probe marked
     for (int pass = 0;; ++pass) {
         out->count = 0;
         s.wanted = s.work = 0;
-        for (uint32_t t = 0; t < r->triangle_count; ++t) refine_one_triangle(r, &s, stretch, t);
+        if (cull) {  // the triangles the probe marked (a superset at any scale <= 1)
+            if (pass == 0) marked = probe_triangles(r, s, stretch, cull, pool);
+            for (uint32_t j = 0; j < marked; ++j)
+                refine_one_triangle(r, &s, stretch, cull->refine_list[j]);
+        } else {
+            for (uint32_t t = 0; t < r->triangle_count; ++t) refine_one_triangle(r, &s, stretch, t);
+        }
         if (stats && pass == 0) stats->wanted = s.wanted;
         const bool saturated = s.full();
         if (from_count || pass + 1 == kMaxPasses || s.wanted == 0) break;
@@ -406,6 +499,36 @@ void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positio
         stats->generated = out->count;
         stats->budget_scale = s.scale;
     }
+}
+
+}  // namespace
+
+void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positions,
+                   const float* normals, const uint8_t* double_sided, const SizeParams& params,
+                   bool stretch, RefinedPoints* out, RefinementStats* stats) {
+    out->count = 0;
+    classify_vertices(r, mesh, positions, normals, params);
+    refine_passes(r, mesh, positions, normals, double_sided, params, stretch, out, stats, nullptr,
+                  nullptr);
+}
+
+void refine_points_culled(RefinementMesh* r, const MeshView& mesh, const float* positions,
+                          const float* normals, const SizeParams& params, bool stretch,
+                          RefinedPoints* out, RefinementStats* stats, ThreadPool* pool) {
+    out->count = 0;
+    const InkTable ink(params);
+    ClassifyTask task{r, positions, normals, &params, &ink, r->cull.list.get()};
+    constexpr uint32_t kMinVerticesPerThread = 2048;
+    if (pool)
+        thread_pool_run(pool, r->cull.list_count, kMinVerticesPerThread, classify_range, &task);
+    else
+        classify_range(&task, 0, r->cull.list_count);
+    refine_passes(r, mesh, positions, normals, nullptr, params, stretch, out, stats, &r->cull,
+                  pool);
+}
+
+float refinement_near_w(const SizeParams& params) {
+    return near_plane_w(params);
 }
 
 void fade_baked_points(const RefinementMesh& r, const PointsView& points, float* size) {

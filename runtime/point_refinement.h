@@ -36,6 +36,7 @@
 
 #include "runtime/asset.h"
 #include "runtime/memory.h"
+#include "runtime/refinement_cull.h"
 #include "runtime/refinement_sequence.h"
 #include "runtime/stipple_size.h"
 
@@ -65,6 +66,7 @@ struct RefinementMesh {
     Buffer<float> vertex_need, vertex_w;
     float finest_density = 0.0f;  // rho0: baked points per unit bind area, finest level
     bool hand_over = true;        // baked points fade in close-ups (mesh domain)
+    RefinementCull cull;          // points domain with its host mesh: runtime/refinement_cull.h
 };
 
 // Extra points of one frame, structure of arrays. Positions/normals/radius go straight into the
@@ -92,11 +94,13 @@ enum class RefinementDomain { mesh, points };
 
 // Builds the per-triangle tables of `mesh` (the domain's bind pose): finest_density = baked
 // points / bind surface area, per triangle the local baked density, root cells, first-point
-// phases (bind_point_positions: the baked points, 3 floats each). Fails only with
-// out_of_memory.
+// phases (bind_point_positions: the baked points, 3 floats each). With the points domain and
+// `host` (the render mesh the baked points lie on, bind pose), also the clusters of
+// runtime/refinement_cull.h for refine_points_culled. Fails only with out_of_memory.
 [[nodiscard]] Status refinement_init(RefinementMesh* r, const MeshView& mesh,
                                      const PointsView& points, const float* bind_point_positions,
-                                     RefinementDomain domain = RefinementDomain::mesh);
+                                     RefinementDomain domain = RefinementDomain::mesh,
+                                     const MeshView* host = nullptr);
 
 // Generates the frame's extra points: `positions`/`normals` are the posed mesh vertices
 // (3 floats each); `stretch` false keeps bind-pose regions (relevance updates off);
@@ -105,6 +109,17 @@ enum class RefinementDomain { mesh, points };
 void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positions,
                    const float* normals, const uint8_t* double_sided, const SizeParams& params,
                    bool stretch, RefinedPoints* out, RefinementStats* stats);
+
+// refine_points over the clusters the last refinement_cull left active only (r->cull: points
+// domain): the per-vertex pass over their corners (r->cull.list), the per-triangle pass over
+// their triangles, both over `pool` (null: the caller alone). Byte-identical to refine_points
+// when every skipped cluster could add no point, which refinement_cull guarantees.
+void refine_points_culled(RefinementMesh* r, const MeshView& mesh, const float* positions,
+                          const float* normals, const SizeParams& params, bool stretch,
+                          RefinedPoints* out, RefinementStats* stats, ThreadPool* pool);
+
+// Clip-space w of the near plane along the view ray (the least w the refinement divides by).
+float refinement_near_w(const SizeParams& params);
 
 // Hand-over (mesh domain only), after size_stipples: scales each baked point's diameter by
 // its host triangle's fade from the last refine_points (1 where the bake alone draws).

@@ -128,16 +128,18 @@ Status create_programs(Renderer* r) {
     r->point_program = r->mesh_program ? link_gl_program(gl, kPointVs, kPointFs, "dot", &st) : 0;
     r->line_program = r->point_program ? link_gl_program(gl, kLineVs, kLineFs, "line", &st) : 0;
     if (!r->line_program) return st;
-    r->mesh_vp = gl.GetUniformLocation(r->mesh_program, "u_view_projection");
-    r->mesh_bias = gl.GetUniformLocation(r->mesh_program, "u_depth_bias");
-    r->mesh_paper = gl.GetUniformLocation(r->mesh_program, "u_paper");
-    r->point_vp = gl.GetUniformLocation(r->point_program, "u_view_projection");
-    r->point_ink = gl.GetUniformLocation(r->point_program, "u_ink");
-    r->point_depth = gl.GetUniformLocation(r->point_program, "u_depth");
-    r->point_use_colour = gl.GetUniformLocation(r->point_program, "u_use_colour");
-    r->point_see_through = gl.GetUniformLocation(r->point_program, "u_see_through");
-    r->line_vp = gl.GetUniformLocation(r->line_program, "u_view_projection");
-    r->line_ink = gl.GetUniformLocation(r->line_program, "u_ink");
+    gl_uniform_locations(gl, r->mesh_program,
+                         {{&r->mesh_vp, "u_view_projection"},
+                          {&r->mesh_bias, "u_depth_bias"},
+                          {&r->mesh_paper, "u_paper"}});
+    gl_uniform_locations(gl, r->point_program,
+                         {{&r->point_vp, "u_view_projection"},
+                          {&r->point_ink, "u_ink"},
+                          {&r->point_depth, "u_depth"},
+                          {&r->point_use_colour, "u_use_colour"},
+                          {&r->point_see_through, "u_see_through"}});
+    gl_uniform_locations(gl, r->line_program,
+                         {{&r->line_vp, "u_view_projection"}, {&r->line_ink, "u_ink"}});
     return {};
 }
 
@@ -252,10 +254,12 @@ void renderer_clear_frame(Renderer* r) {
     const float background[4] = {c.background[0], c.background[1], c.background[2], 1.0f};
     const float far_depth[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    const bool scissored = renderer_scissor_dirty(r);  // runtime/renderer_dirty.cpp
     gl.ClearBufferfv(GL_COLOR, 0, background);
     if (c.depth_copy) gl.ClearBufferfv(GL_COLOR, 1, far_depth);
     gl.DepthMask(GL_TRUE);  // the points pass leaves depth writes off; glClear obeys the mask
     gl.Clear(GL_DEPTH_BUFFER_BIT);
+    if (scissored) gl.Disable(GL_SCISSOR_TEST);
 }
 
 void renderer_draw_mesh(Renderer* r, const glm::mat4& view_projection, const float* positions,
@@ -315,6 +319,7 @@ void renderer_draw_triangles(Renderer* r, const glm::mat4& view_projection) {
 
 void renderer_begin_overlay(Renderer* r) {
     const GlApi& gl = r->gl;
+    renderer_mark_dirty(r);
     gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
     const GLenum first[1] = {GL_COLOR_ATTACHMENT0};
     gl.DrawBuffers(1, first);
@@ -329,6 +334,7 @@ void renderer_draw_points(Renderer* r, const glm::mat4& view_projection, const f
 void renderer_draw_dots(Renderer* r, const glm::mat4& view_projection, const float* positions,
                         const float* sizes, const uint8_t* colours, uint32_t point_count) {
     const GlApi& gl = r->gl;
+    renderer_mark_dirty(r);
     gl.BindFramebuffer(GL_FRAMEBUFFER, r->ink_fbo);
     begin_ink_pass(r, r->point_program, r->point_vp, r->point_ink, view_projection);
     const bool own_colours = colours && r->point_colour_vbo;
@@ -367,6 +373,7 @@ void renderer_draw_line_sets(Renderer* r, const glm::mat4& view_projection, cons
                              uint32_t line_count, const float* more, uint32_t more_count) {
     const GlApi& gl = r->gl;
     if (line_count + more_count == 0) return;
+    renderer_mark_dirty(r);
     float range[2] = {1.0f, 1.0f};
     gl.GetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, range);
     float width = r->config.line_width;
@@ -458,6 +465,7 @@ void renderer_blit_to_default(Renderer* r, int width, int height) {
 void renderer_draw_points_from(Renderer* r, const glm::mat4& view_projection, GLuint vao,
                                uint32_t point_count) {
     const GlApi& gl = r->gl;
+    renderer_mark_dirty(r);
     gl.BindFramebuffer(GL_FRAMEBUFFER, r->ink_fbo);
     begin_ink_pass(r, r->point_program, r->point_vp, r->point_ink, view_projection);
     gl.Disable(GL_DEPTH_TEST);  // each dot's visibility: kPointVs

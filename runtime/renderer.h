@@ -125,6 +125,10 @@ struct Renderer {
     GLint occluder_vp = -1, occluder_bias = -1, occluder_paper = -1, occluder_eye = -1,
           occluder_push = -1;
     bool occluder_enabled = false;
+    // What the next renderer_clear_frame clears (runtime/renderer_dirty.cpp): x, y, width,
+    // height in pixels of what has been drawn since the last clear; width < 0: all of it.
+    int dirty[4] = {0, 0, -1, -1};
+    float cleared_background[3] = {};  // the background the last clear painted
 };
 
 // Creates the framebuffer, shaders and buffers. Fails with gl_error (incomplete framebuffer,
@@ -173,6 +177,25 @@ void renderer_destroy_occluder(Renderer* r);
 // culled and then the double-sided triangles with the current (mesh) program, and returns
 // true; else draws nothing and returns false.
 bool renderer_draw_occluder(Renderer* r, const glm::mat4& view_projection);
+
+// Clearing only what was drawn (runtime/renderer_dirty.cpp). renderer_clear_frame clears the
+// dirty rectangle (all of the image unless renderer_set_drawn_box narrowed it since the
+// last draw, or when the background changed) and leaves it all dirty; every draw entry point
+// marks it all dirty. renderer_set_drawn_box, called after a frame's passes, narrows it to the
+// screen rectangle of the box [lo, hi] (the mesh's space) under `view_projection`, grown by
+// `margin_px` (dots' and lines' half width): what those passes drew must lie inside.
+void renderer_mark_dirty(Renderer* r);
+void renderer_set_drawn_box(Renderer* r, const glm::mat4& view_projection, const glm::vec3& lo,
+                            const glm::vec3& hi, float margin_px);
+// renderer_set_drawn_box for the box of the posed mesh's `vertex_count` vertices and a margin
+// for dots up to the largest of max_point_size and sizes[0 .. size_count) in diameter and for
+// the lines: what pipeline_frame drew when everything lies on the mesh (no paintstrokes).
+void renderer_set_drawn_mesh(Renderer* r, const glm::mat4& view_projection, const float* positions,
+                             uint32_t vertex_count, const float* sizes, uint32_t size_count,
+                             float max_point_size);
+// renderer_clear_frame's part: enables the scissor test on the dirty rectangle when it is not
+// all of the image (returns true: the caller disables it after clearing).
+bool renderer_scissor_dirty(Renderer* r);
 
 // Binds the offscreen framebuffer (colour and depth; not the depth copy) and its viewport for a
 // pass that draws its own geometry over the mesh pass (paintstrokes, runtime/stroke_stage.h).

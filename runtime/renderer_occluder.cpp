@@ -72,11 +72,12 @@ Status renderer_init_occluder(Renderer* r) {
         gl, kOccluderVs, c.depth_copy ? shaders::kMeshFs : shaders::kMeshFsNoCopy, "occluder", &st);
     if (!r->occluder_program) return st;
     const GLuint p = r->occluder_program;
-    r->occluder_vp = gl.GetUniformLocation(p, "u_view_projection");
-    r->occluder_bias = gl.GetUniformLocation(p, "u_depth_bias");
-    r->occluder_paper = gl.GetUniformLocation(p, "u_paper");
-    r->occluder_eye = gl.GetUniformLocation(p, "u_eye");
-    r->occluder_push = gl.GetUniformLocation(p, "u_push");
+    gl_uniform_locations(gl, p,
+                         {{&r->occluder_vp, "u_view_projection"},
+                          {&r->occluder_bias, "u_depth_bias"},
+                          {&r->occluder_paper, "u_paper"},
+                          {&r->occluder_eye, "u_eye"},
+                          {&r->occluder_push, "u_push"}});
     gl.BindVertexArray(0);  // the index buffer is bound to mesh_vao only while drawing
     gl.GenBuffers(1, &r->occluder_ibo);
     gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->occluder_ibo);

@@ -112,15 +112,16 @@ Status renderer_init_looks(Renderer* r) {
         link_gl_program(gl, kStyleVs, c.depth_copy ? kStyleFs : kStyleFsNoCopy, "style mesh", &st);
     if (!r->style_program) return st;
     const GLuint p = r->style_program;
-    r->style_vp = gl.GetUniformLocation(p, "u_view_projection");
-    r->style_bias = gl.GetUniformLocation(p, "u_depth_bias");
-    r->style_fill = gl.GetUniformLocation(p, "u_fill");
-    r->style_toon = gl.GetUniformLocation(p, "u_toon");
-    r->style_shade = gl.GetUniformLocation(p, "u_shade");
-    r->style_lights = gl.GetUniformLocation(p, "u_lights");
-    r->style_light_count = gl.GetUniformLocation(p, "u_light_count");
-    r->style_ambient = gl.GetUniformLocation(p, "u_ambient");
-    r->style_cut = gl.GetUniformLocation(p, "u_cut");
+    gl_uniform_locations(gl, p,
+                         {{&r->style_vp, "u_view_projection"},
+                          {&r->style_bias, "u_depth_bias"},
+                          {&r->style_fill, "u_fill"},
+                          {&r->style_toon, "u_toon"},
+                          {&r->style_shade, "u_shade"},
+                          {&r->style_lights, "u_lights"},
+                          {&r->style_light_count, "u_light_count"},
+                          {&r->style_ambient, "u_ambient"},
+                          {&r->style_cut, "u_cut"}});
     gl.BindVertexArray(r->mesh_vao);
     r->mesh_normal_vbo = attribute_buffer(gl, 1, 3, GL_FLOAT, GL_FALSE, size_t(c.vertex_count) * 12,
                                           nullptr, GL_DYNAMIC_DRAW);

@@ -1,0 +1,133 @@
+#include "runtime/point_cull.h"
+
+#include <atomic>
+#include <glm/glm.hpp>
+
+#include "runtime/point_placement.h"
+
+namespace stipple {
+
+CullKernelFrame::CullKernelFrame(const PointStageFrame& f, const PointClusters& c, bool relevance)
+    : sizing(*f.params),
+      points(f.points),
+      positions(f.positions),
+      normals(f.normals),
+      scale(f.scale),
+      fallback_radius(f.fallback_radius),
+      area_bound(c.point_area_bound.get()),
+      line_bound(c.point_line_bound.get()),
+      point_cluster(c.point_cluster.get()),
+      cluster_factor(c.cluster_factor.get()),
+      forced_bits(c.forced_bits.get()),
+      relevance_update(relevance),
+      radius_bound(point_cull_radius_bound_enabled()),
+      radius(f.radius),
+      size(f.size) {}
+
+namespace {
+
+std::atomic<bool> g_cull{false};  // off by default: see point_cull.h
+std::atomic<bool> g_radius_bound{false};
+
+// stipple_size.cpp's stipple_size after its facing test, for a given radius (Alg. 3.2,
+// §3.1.1, §3.1.2): the same operations in the same order.
+inline float size_for_radius(const CullKernelFrame& k, float radius, float n_dot_v, float w,
+                             float ink) {
+    const SizeParams& params = *k.sizing.params;
+    const float r_px = radius * k.sizing.focal / w;
+    const float region_px = kRegionPerRadiusSquared * r_px * r_px * n_dot_v;  // §3.1.2
+    return smooth_point_size(ink, region_px, params.max_point_size, params.smooth_slope);
+}
+
+// One point: whether it is kept, and then its radius and size.
+inline bool cull_point(const CullKernelFrame& k, uint32_t i) {
+    const SizeParams& params = *k.sizing.params;
+    const float* pp = k.positions + size_t(i) * 3;
+    const float* np = k.normals + size_t(i) * 3;
+    const glm::vec3 p(pp[0], pp[1], pp[2]);
+    const glm::vec3 n(np[0], np[1], np[2]);
+    const glm::vec3 to_eye = params.eye - p;
+    const float n_dot_v = glm::dot(n, to_eye) / glm::length(to_eye);
+    const glm::vec4 row_w(k.sizing.row_w[0], k.sizing.row_w[1], k.sizing.row_w[2],
+                          k.sizing.row_w[3]);
+    const float w = glm::dot(row_w, glm::vec4(p, 1.0f));
+    const bool forced = (k.forced_bits[i >> 6] >> (i & 63)) & 1;
+    const bool hidden = n_dot_v <= 0.0f || w <= 0.0f;
+    float ink = 0.0f;
+    if (!hidden) {
+        ink = k.sizing.table.at(lighting(params, n));
+        const float bound =
+            k.radius_bound ? size_for_radius(k, cull_radius_bound(k, i), n_dot_v, w, ink) : 1.0f;
+        if (bound == 0.0f && !forced) return false;  // size 0 (a NaN bound is kept)
+    } else if (!forced) {
+        return false;
+    }
+    const float r = k.relevance_update ? point_relevance_radius(*k.points, k.positions, k.scale,
+                                                                k.fallback_radius, i)
+                                       : k.fallback_radius[i];
+    k.radius[i] = r;
+    k.size[i] = hidden ? 0.0f : size_for_radius(k, r, n_dot_v, w, ink);
+    return true;
+}
+
+struct CullTask {
+    const CullKernelFrame* k;
+    const uint32_t* list;
+    PointSimd simd;
+    std::atomic<uint32_t> kept{0};
+};
+
+void cull_range(void* context, uint32_t begin, uint32_t end) {
+    CullTask& t = *static_cast<CullTask*>(context);
+    const uint32_t kept = t.simd == PointSimd::avx2
+                              ? cull_relevance_size_avx2(*t.k, t.list, begin, end)
+                              : cull_relevance_size(*t.k, t.list, begin, end);
+    t.kept.fetch_add(kept, std::memory_order_relaxed);
+}
+
+}  // namespace
+
+void point_cull_enable(bool on) {
+    g_cull.store(on, std::memory_order_relaxed);
+}
+
+bool point_cull_enabled() {
+    return g_cull.load(std::memory_order_relaxed);
+}
+
+void point_cull_radius_bound(bool on) {
+    g_radius_bound.store(on, std::memory_order_relaxed);
+}
+
+bool point_cull_radius_bound_enabled() {
+    return g_radius_bound.load(std::memory_order_relaxed);
+}
+
+uint32_t cull_relevance_size(const CullKernelFrame& k, const uint32_t* list, uint32_t begin,
+                             uint32_t end) {
+    uint32_t kept = 0;
+    for (uint32_t j = begin; j < end; ++j) kept += cull_point(k, list[j]);
+    return kept;
+}
+
+uint32_t point_stage_cull_relevance_size(ThreadPool* pool, const PointStageFrame& f,
+                                         const PointClusters& c, bool relevance_update,
+                                         const uint32_t* list, uint32_t count) {
+    const CullKernelFrame k(f, c, relevance_update);
+    CullTask task;
+    task.k = &k;
+    task.list = list;
+    task.simd = point_simd();
+    thread_pool_run(pool, count, kMinPointsPerThread, cull_range, &task);
+    return task.kept.load(std::memory_order_relaxed);
+}
+
+#if !((defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__)))
+// No AVX2 anywhere else: point_simd() is never avx2 there.
+uint32_t cull_relevance_size_avx2(const CullKernelFrame& k, const uint32_t* list, uint32_t begin,
+                                  uint32_t end) {
+    return cull_relevance_size(k, list, begin, end);
+}
+#endif
+
+}  // namespace stipple

@@ -1,0 +1,590 @@
+#include "runtime/refinement_cull.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <glm/gtc/type_ptr.hpp>
+
+namespace stipple {
+
+namespace {
+
+constexpr uint32_t kTrianglesPerCluster = 256;
+constexpr uint32_t kNone = 0xFFFFFFFFu;
+constexpr uint32_t kSpanPerEdge = 6, kSpanPerTriangle = 3 * kSpanPerEdge;
+// Relative slack on every bound against the full stage's float rounding.
+constexpr float kSlack = 1e-3f;
+
+Status no_memory(uint32_t n) {
+    return make_status(StatusCode::out_of_memory,
+                       "out of memory for the refinement's culling of %u triangles", n);
+}
+
+glm::vec3 vertex(const MeshView& m, uint32_t v) {
+    return glm::make_vec3(m.positions + size_t(v) * 3);
+}
+
+// indices with every vertex replaced by the first vertex at the same bind position; the pairs
+// (vertex, its first) that differ into seam.
+bool weld(const MeshView& m, uint32_t* indices, Buffer<uint32_t>* seam, uint32_t* seam_count) {
+    Buffer<uint32_t> order = make_buffer<uint32_t>(m.vertex_count);
+    Buffer<uint32_t> first = make_buffer<uint32_t>(m.vertex_count);
+    if (!order || !first) return false;
+    auto less = [&](uint32_t a, uint32_t b) {
+        for (int d = 0; d < 3; ++d) {
+            const float pa = m.positions[size_t(a) * 3 + d], pb = m.positions[size_t(b) * 3 + d];
+            if (pa != pb) return pa < pb;
+        }
+        return a < b;
+    };
+    for (uint32_t v = 0; v < m.vertex_count; ++v) order[v] = v;
+    std::sort(order.get(), order.get() + m.vertex_count, less);
+    uint32_t pairs = 0;
+    for (uint32_t j = 0; j < m.vertex_count; ++j) {
+        const uint32_t v = order[j];
+        const bool same = j > 0 && std::memcmp(m.positions + size_t(v) * 3,
+                                               m.positions + size_t(order[j - 1]) * 3, 12) == 0;
+        first[v] = same ? first[order[j - 1]] : v;
+        pairs += first[v] != v;
+    }
+    if (!alloc(seam, size_t(pairs) * 2)) return false;
+    *seam_count = 0;
+    for (uint32_t v = 0; v < m.vertex_count; ++v)
+        if (first[v] != v) {
+            (*seam)[size_t(*seam_count) * 2] = v;
+            (*seam)[size_t(*seam_count) * 2 + 1] = first[v];
+            ++*seam_count;
+        }
+    for (size_t i = 0; i < size_t(m.triangle_count) * 3; ++i) indices[i] = first[m.indices[i]];
+    return true;
+}
+
+// Render triangles around each render vertex (CSR).
+struct Adjacency {
+    Buffer<uint32_t> begin, triangle;
+};
+
+bool build_adjacency(const MeshView& m, Adjacency* a) {
+    if (!alloc(&a->begin, size_t(m.vertex_count) + 1) ||
+        !alloc(&a->triangle, size_t(m.triangle_count) * 3))
+        return false;
+    std::fill(a->begin.get(), a->begin.get() + m.vertex_count + 1, 0u);
+    for (size_t i = 0; i < size_t(m.triangle_count) * 3; ++i) ++a->begin[m.indices[i] + 1];
+    for (uint32_t v = 0; v < m.vertex_count; ++v) a->begin[v + 1] += a->begin[v];
+    Buffer<uint32_t> fill = make_buffer<uint32_t>(m.vertex_count);
+    if (!fill) return false;
+    std::copy(a->begin.get(), a->begin.get() + m.vertex_count, fill.get());
+    for (uint32_t t = 0; t < m.triangle_count; ++t)
+        for (int k = 0; k < 3; ++k) a->triangle[fill[m.indices[size_t(t) * 3 + k]]++] = t;
+    return true;
+}
+
+bool has_vertex(const uint32_t* tri, uint32_t v) {
+    return tri[0] == v || tri[1] == v || tri[2] == v;
+}
+
+// The two vertices triangles s and t share, if they share an edge.
+bool shared_edge(const MeshView& m, uint32_t s, uint32_t t, uint32_t* a, uint32_t* b) {
+    const uint32_t* ts = m.indices + size_t(s) * 3;
+    const uint32_t* tt = m.indices + size_t(t) * 3;
+    uint32_t shared[3], count = 0;
+    for (int k = 0; k < 3; ++k)
+        if (has_vertex(tt, ts[k])) shared[count++] = ts[k];
+    if (count < 2) return false;
+    *a = shared[0];
+    *b = shared[1];
+    return true;
+}
+
+// The fewest triangles from hx to hy across shared edges, at most kSpanPerEdge of them, into
+// seq (hx first); 0 if none.
+uint32_t triangle_chain(const MeshView& m, const Adjacency& adj, uint32_t hx, uint32_t hy,
+                        uint32_t* seq) {
+    constexpr uint32_t kSeen = 256;
+    uint32_t seen[kSeen], parent[kSeen], depth[kSeen], count = 1, head = 0;
+    seen[0] = hx;
+    parent[0] = kNone;
+    depth[0] = 1;
+    while (head < count) {
+        const uint32_t at = head++;
+        if (seen[at] == hy) {
+            uint32_t n = depth[at];
+            for (uint32_t i = at; i != kNone; i = parent[i]) seq[--n] = seen[i];
+            return depth[at];
+        }
+        if (depth[at] >= kSpanPerEdge) continue;
+        const uint32_t* tri = m.indices + size_t(seen[at]) * 3;
+        for (int k = 0; k < 3; ++k)
+            for (uint32_t e = adj.begin[tri[k]]; e < adj.begin[tri[k] + 1]; ++e) {
+                const uint32_t u = adj.triangle[e];
+                uint32_t a, b;
+                if (!shared_edge(m, seen[at], u, &a, &b)) continue;
+                bool known = false;
+                for (uint32_t i = 0; i < count && !known; ++i) known = seen[i] == u;
+                if (known || count == kSeen) continue;
+                seen[count] = u;
+                parent[count] = at;
+                depth[count++] = depth[at] + 1;
+            }
+    }
+    return 0;
+}
+
+// An upper bound on the bind length of a path on the render mesh from x (in triangle hx) to y
+// (in hy): straight inside each triangle of the shortest chain between them, crossing each
+// shared edge where coordinate descent puts it (any crossing gives a path, so any is an upper
+// bound); through a shared vertex when that is shorter. The chain's triangles go to span
+// (kNone: unused). Infinity when the hosts are further apart than kSpanPerEdge triangles.
+float path_bound(const MeshView& m, const Adjacency& adj, glm::vec3 x, uint32_t hx, glm::vec3 y,
+                 uint32_t hy, uint32_t* span) {
+    for (uint32_t i = 0; i < kSpanPerEdge; ++i) span[i] = kNone;
+    span[0] = hx;
+    if (hx == hy) return glm::length(y - x);
+    float best = INFINITY;
+    const uint32_t* tx = m.indices + size_t(hx) * 3;
+    const uint32_t* ty = m.indices + size_t(hy) * 3;
+    for (int k = 0; k < 3; ++k)
+        if (has_vertex(ty, tx[k])) {
+            const glm::vec3 v = vertex(m, tx[k]);
+            best = std::min(best, glm::length(v - x) + glm::length(y - v));
+        }
+    uint32_t seq[kSpanPerEdge];
+    const uint32_t n = triangle_chain(m, adj, hx, hy, seq);
+    if (n < 2) {
+        if (best < INFINITY) span[1] = hy;
+        return best;
+    }
+    glm::vec3 a[kSpanPerEdge], b[kSpanPerEdge], q[kSpanPerEdge + 1];
+    float s[kSpanPerEdge];
+    for (uint32_t i = 1; i < n; ++i) {
+        uint32_t va = 0, vb = 0;
+        shared_edge(m, seq[i - 1], seq[i], &va, &vb);
+        a[i] = vertex(m, va);
+        b[i] = vertex(m, vb);
+        s[i] = 0.5f;
+        q[i] = a[i] + 0.5f * (b[i] - a[i]);
+    }
+    q[0] = x;
+    q[n] = y;
+    for (int sweep = 0; sweep < 12; ++sweep)
+        for (uint32_t i = 1; i < n; ++i) {
+            auto length = [&](float t) {
+                const glm::vec3 p = a[i] + t * (b[i] - a[i]);
+                return glm::length(p - q[i - 1]) + glm::length(q[i + 1] - p);
+            };
+            float lo = 0.0f, hi = 1.0f;
+            for (int it = 0; it < 24; ++it) {
+                const float m1 = lo + (hi - lo) / 3.0f, m2 = hi - (hi - lo) / 3.0f;
+                if (length(m1) < length(m2))
+                    hi = m2;
+                else
+                    lo = m1;
+            }
+            s[i] = 0.5f * (lo + hi);
+            q[i] = a[i] + s[i] * (b[i] - a[i]);
+        }
+    float g = 0.0f;
+    for (uint32_t i = 0; i < n; ++i) g += glm::length(q[i + 1] - q[i]);
+    if (g < best) {
+        for (uint32_t i = 0; i < n; ++i) span[i] = seq[i];
+        return g;
+    }
+    span[1] = hy;
+    return best;
+}
+
+// Lists into out[begin[k] .. begin[k + 1]) the distinct ids(t, 0..per) over cluster k's
+// triangles (order[tri_begin[k] .. tri_begin[k + 1])); ids kNone are left out.
+template <typename Ids>
+bool collect(uint32_t clusters, const uint32_t* order, const uint32_t* tri_begin, uint32_t per,
+             uint32_t id_count, Ids ids, Buffer<uint32_t>* begin, Buffer<uint32_t>* out) {
+    Buffer<uint32_t> stamp = make_buffer<uint32_t>(size_t(id_count) + 1);
+    if (!stamp || !alloc(begin, size_t(clusters) + 1)) return false;
+    std::fill(stamp.get(), stamp.get() + id_count + 1, kNone);
+    for (int pass = 0; pass < 2; ++pass) {
+        uint32_t n = 0;
+        for (uint32_t k = 0; k < clusters; ++k) {
+            if (pass == 0) (*begin)[k] = n;
+            for (uint32_t j = tri_begin[k]; j < tri_begin[k + 1]; ++j)
+                for (uint32_t i = 0; i < per; ++i) {
+                    const uint32_t id = ids(order[j], i);
+                    if (id == kNone || id >= id_count || stamp[id] == k * 2 + uint32_t(pass))
+                        continue;
+                    stamp[id] = k * 2 + uint32_t(pass);
+                    if (pass == 1) (*out)[n] = id;
+                    ++n;
+                }
+        }
+        if (pass == 0) {
+            (*begin)[clusters] = n;
+            if (!alloc(out, n)) return false;
+        }
+    }
+    return true;
+}
+
+// Per domain triangle, from its corners' paths over the render mesh (topology: welded).
+struct TriangleBounds {
+    Buffer<uint32_t> spans;  // kSpanPerTriangle per triangle: render triangles of its paths
+    Buffer<float> lower;     // 2 per triangle: lower_t, lower_t / q_t (-1: a corner off host)
+    Buffer<float> terms;     // 3 per triangle: refinement_cull's affine bound over lower_t
+    Buffer<float> shortest;  // its shortest edge path bound
+    glm::vec3 lo{INFINITY}, hi{-INFINITY};  // box of the triangles' centres
+    double area = 0.0;
+};
+
+bool triangle_bounds(const MeshView& domain, const MeshView& topology, const Adjacency& adj,
+                     const PointsView& points, const float* bind_area, const float* density,
+                     const float* phase, TriangleBounds* b) {
+    const uint32_t n = domain.triangle_count;
+    b->spans = make_buffer<uint32_t>(size_t(n) * kSpanPerTriangle);
+    b->lower = make_buffer<float>(size_t(n) * 2);
+    b->terms = make_buffer<float>(size_t(n) * 3);
+    b->shortest = make_buffer<float>(n);
+    if (!b->spans || !b->lower || !b->terms || !b->shortest) return false;
+    for (uint32_t t = 0; t < n; ++t) {
+        const uint32_t* tri = domain.indices + size_t(t) * 3;
+        glm::vec3 p[3];
+        uint32_t h[3];
+        bool in = true;  // every corner in its host triangle (barycentric in [0, 1])
+        for (int k = 0; k < 3; ++k) {
+            p[k] = vertex(domain, tri[k]);
+            h[k] = points.host_triangle[tri[k]];
+            const float u = points.bary_u[tri[k]], v = points.bary_v[tri[k]];
+            in = in && u >= -1e-6f && v >= -1e-6f && 1.0f - u - v >= -1e-6f;
+        }
+        const glm::vec3 centre = (p[0] + p[1] + p[2]) / 3.0f;
+        b->lo = glm::min(b->lo, centre);
+        b->hi = glm::max(b->hi, centre);
+        const float area = bind_area[t];
+        b->area += area > 0.0f ? area : 0.0f;
+        uint32_t* span = b->spans.get() + size_t(t) * kSpanPerTriangle;
+        float g[3];
+        const int ends[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+        for (int e = 0; e < 3; ++e)
+            g[e] = path_bound(topology, adj, p[ends[e][0]], h[ends[e][0]], p[ends[e][1]],
+                              h[ends[e][1]], span + e * kSpanPerEdge);
+        const float pair = std::min({g[0] * g[1], g[0] * g[2], g[1] * g[2]});
+        b->shortest[t] = std::min({g[0], g[1], g[2]});
+        const float q = 0.5f * pair / area;  // posed area <= L^2 q bind area
+        // Triangles the full stage skips (no bind area) bound nothing: +inf. A corner off its
+        // host: -1, the cluster is never skipped.
+        const float l = area > 0.0f ? density[t] + phase[t] / area : INFINITY;
+        b->lower[size_t(t) * 2] = in ? l : -1.0f;
+        b->lower[size_t(t) * 2 + 1] = !in ? -1.0f : area > 0.0f ? (q < INFINITY ? l / q : 0.0f) : l;
+        // stretch_t <= s12 + 2 D s1 (|e1| + |e2|) / 2A + 4 D^2 / 2A (refinement_cull), over
+        // lower_t: its three coefficients, the edges from the corner that makes them least.
+        float edges = INFINITY;
+        for (int o = 0; o < 3; ++o)
+            edges = std::min(
+                edges, glm::length(p[(o + 1) % 3] - p[o]) + glm::length(p[(o + 2) % 3] - p[o]));
+        const bool counted = area > 0.0f && l < INFINITY;
+        b->terms[size_t(t) * 3] = counted ? 1.0f / l : 0.0f;
+        b->terms[size_t(t) * 3 + 1] = counted ? edges / (2.0f * area * l) : 0.0f;
+        b->terms[size_t(t) * 3 + 2] = counted ? 1.0f / (2.0f * area * l) : 0.0f;
+    }
+    return true;
+}
+
+// Clusters: cells of a grid over the triangles' centres, ~kTrianglesPerCluster each; order
+// lists the triangles cluster by cluster, tri_begin where each cluster starts.
+bool cluster_triangles(const MeshView& domain, const TriangleBounds& b, RefinementCull* c,
+                       Buffer<uint32_t>* order, Buffer<uint32_t>* tri_begin) {
+    const uint32_t n = domain.triangle_count;
+    Buffer<uint64_t> key = make_buffer<uint64_t>(n);
+    if (!key || !alloc(order, n) || !alloc(tri_begin, size_t(n) + 1) ||
+        !alloc(&c->triangle_cluster, n))
+        return false;
+    const double cells = std::max(1.0, double(n) / kTrianglesPerCluster);
+    const float h = float(std::sqrt(std::max(b.area, 1e-30) / cells));
+    const glm::vec3 extent = glm::max(b.hi - b.lo, glm::vec3(0.0f));
+    const uint64_t ny = uint64_t(extent.y / h) + 1, nz = uint64_t(extent.z / h) + 1;
+    for (uint32_t t = 0; t < n; ++t) {
+        const uint32_t* tri = domain.indices + size_t(t) * 3;
+        const glm::vec3 centre =
+            (vertex(domain, tri[0]) + vertex(domain, tri[1]) + vertex(domain, tri[2])) / 3.0f;
+        const glm::vec3 cell = glm::floor((centre - b.lo) / h);
+        key[t] = (uint64_t(cell.x) * ny + uint64_t(cell.y)) * nz + uint64_t(cell.z);
+        (*order)[t] = t;
+    }
+    std::sort(order->get(), order->get() + n,
+              [&](uint32_t x, uint32_t y) { return key[x] != key[y] ? key[x] < key[y] : x < y; });
+    uint32_t clusters = 0;
+    for (uint32_t j = 0; j < n; ++j) {
+        const uint32_t t = (*order)[j];
+        if (j == 0 || key[t] != key[(*order)[j - 1]]) (*tri_begin)[clusters++] = j;
+        c->triangle_cluster[t] = clusters - 1;
+    }
+    (*tri_begin)[clusters] = n;
+    c->cluster_count = clusters;
+    return true;
+}
+
+// Per cluster, the least and largest of its triangles' bounds.
+void cluster_constants(RefinementCull* c, const TriangleBounds& b, const float* bind_area,
+                       const uint32_t* order, const uint32_t* tri_begin) {
+    for (uint32_t k = 0; k < c->cluster_count; ++k) {
+        float rest = INFINITY, stretched = INFINITY, path = INFINITY, most[3] = {0, 0, 0};
+        for (uint32_t j = tri_begin[k]; j < tri_begin[k + 1]; ++j) {
+            const uint32_t t = order[j];
+            rest = std::min(rest, b.lower[size_t(t) * 2]);
+            stretched = std::min(stretched, b.lower[size_t(t) * 2 + 1]);
+            for (int i = 0; i < 3; ++i) most[i] = std::max(most[i], b.terms[size_t(t) * 3 + i]);
+            if (bind_area[t] > 0.0f) path = std::min(path, b.shortest[t]);
+        }
+        for (int i = 0; i < 3; ++i) c->affine[size_t(k) * 3 + i] = most[i] * (1.0f + kSlack);
+        c->min_path[k] = path;
+        c->lower_rest[k] = rest;
+        c->lower_stretch[k] = stretched;
+    }
+}
+
+}  // namespace
+
+Status refinement_cull_init(RefinementCull* c, const MeshView& domain, const MeshView& host,
+                            const PointsView& points, const float* bind_area, const float* density,
+                            const float* phase) {
+    *c = RefinementCull();
+    const uint32_t n = domain.triangle_count;
+    if (n == 0 || domain.vertex_count != points.point_count) return {};
+    // Topology over welded vertices (seams split vertices that share a position).
+    Buffer<uint32_t> welded = make_buffer<uint32_t>(size_t(host.triangle_count) * 3);
+    if (!welded || !weld(host, welded.get(), &c->seam, &c->seam_count)) return no_memory(n);
+    MeshView topology = host;
+    topology.indices = welded.get();
+    Adjacency adj;
+    TriangleBounds b;
+    Buffer<uint32_t>& order = c->triangles;
+    Buffer<uint32_t>& tri_begin = c->tri_begin;
+    if (!build_adjacency(topology, &adj) ||
+        !triangle_bounds(domain, topology, adj, points, bind_area, density, phase, &b) ||
+        !cluster_triangles(domain, b, c, &order, &tri_begin))
+        return no_memory(n);
+    const uint32_t clusters = c->cluster_count;
+    c->point_count = points.point_count;
+    const uint32_t* hi_idx = host.indices;
+    const uint32_t* di = domain.indices;
+    const uint32_t* host_of = points.host_triangle;
+    const uint32_t* spans = b.spans.get();
+    if (!collect(
+            clusters, order.get(), tri_begin.get(), 9, host.vertex_count,
+            [&](uint32_t t, uint32_t i) {
+                return hi_idx[size_t(host_of[di[t * 3 + i / 3]]) * 3 + i % 3];
+            },
+            &c->host_begin, &c->host_vertex) ||
+        !collect(
+            clusters, order.get(), tri_begin.get(), kSpanPerTriangle, host.triangle_count,
+            [&](uint32_t t, uint32_t i) { return spans[size_t(t) * kSpanPerTriangle + i]; },
+            &c->span_begin, &c->span) ||
+        !collect(
+            clusters, order.get(), tri_begin.get(), 3, points.point_count,
+            [&](uint32_t t, uint32_t i) { return di[size_t(t) * 3 + i]; }, &c->corner_begin,
+            &c->corner))
+        return no_memory(n);
+    if (!alloc(&c->lower_stretch, clusters) || !alloc(&c->lower_rest, clusters) ||
+        !alloc(&c->affine, size_t(clusters) * 3) || !alloc(&c->min_path, clusters) ||
+        !alloc(&c->bind_gram, size_t(host.triangle_count) * 3) || !alloc(&c->active, clusters) ||
+        !alloc(&c->list, points.point_count) || !alloc(&c->candidate, n) ||
+        !alloc(&c->active_list, clusters) || !alloc(&c->refine_list, n) ||
+        !alloc(&c->sigma, host.triangle_count) || !alloc(&c->sigma_frame, host.triangle_count) ||
+        !alloc(&c->stamp, size_t(points.point_count) / 64 + 1))
+        return no_memory(n);
+    cluster_constants(c, b, bind_area, order.get(), tri_begin.get());
+    for (uint32_t t = 0; t < host.triangle_count; ++t) {
+        const uint32_t* tri = host.indices + size_t(t) * 3;
+        const glm::vec3 a = vertex(host, tri[0]);
+        const glm::vec3 e1 = vertex(host, tri[1]) - a, e2 = vertex(host, tri[2]) - a;
+        c->bind_gram[size_t(t) * 3] = glm::dot(e1, e1);
+        c->bind_gram[size_t(t) * 3 + 1] = glm::dot(e1, e2);
+        c->bind_gram[size_t(t) * 3 + 2] = glm::dot(e2, e2);
+    }
+    std::fill(c->stamp.get(), c->stamp.get() + points.point_count / 64 + 1, uint64_t(0));
+    std::fill(c->sigma_frame.get(), c->sigma_frame.get() + host.triangle_count, 0u);
+    return {};
+}
+
+namespace {
+
+// The largest squared singular value of render triangle t's map from bind to posed pose (the
+// generalised eigenvalue of its posed and bind Gram matrices); +inf where the bind triangle
+// has no area or the pose is not finite.
+float sigma2(const RefinementCull& c, const MeshView& host, const float* posed, uint32_t t) {
+    const uint32_t* tri = host.indices + size_t(t) * 3;
+    const glm::dvec3 a = glm::make_vec3(posed + size_t(tri[0]) * 3);
+    const glm::dvec3 e1 = glm::dvec3(glm::make_vec3(posed + size_t(tri[1]) * 3)) - a;
+    const glm::dvec3 e2 = glm::dvec3(glm::make_vec3(posed + size_t(tri[2]) * 3)) - a;
+    const double p11 = glm::dot(e1, e1), p12 = glm::dot(e1, e2), p22 = glm::dot(e2, e2);
+    const float* g = c.bind_gram.get() + size_t(t) * 3;
+    const double g11 = g[0], g12 = g[1], g22 = g[2];
+    const double det = g11 * g22 - g12 * g12;
+    if (!(det > 1e-10 * (g11 + g22) * (g11 + g22))) return INFINITY;
+    const double b = p11 * g22 + p22 * g11 - 2.0 * p12 * g12;
+    const double disc = std::max(b * b - 4.0 * det * (p11 * p22 - p12 * p12), 0.0);
+    const double s = (b + std::sqrt(disc)) / (2.0 * det);
+    return s == s ? float(s * (1.0 + 1e-5)) : INFINITY;
+}
+
+// The largest eigenvalue of a symmetric 3x3 matrix (closed form), a little above.
+double max_eigenvalue(const glm::dmat3& a) {
+    const double p1 = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
+    const double q = (a[0][0] + a[1][1] + a[2][2]) / 3.0;
+    const double p2 = (a[0][0] - q) * (a[0][0] - q) + (a[1][1] - q) * (a[1][1] - q) +
+                      (a[2][2] - q) * (a[2][2] - q) + 2.0 * p1;
+    const double p = std::sqrt(p2 / 6.0);
+    if (!(p > 1e-300)) return q * (1.0 + 1e-9);
+    const glm::dmat3 b = (a - q * glm::dmat3(1.0)) / p;
+    const double r = std::clamp(glm::determinant(b) / 2.0, -1.0, 1.0);
+    return (q + 2.0 * p * std::cos(std::acos(r) / 3.0)) * (1.0 + 1e-9) + 1e-12 * p;
+}
+
+// An upper bound on max_t stretch_t / lower_t over cluster k, from any affine map M x + t:
+// each posed corner is M x_i + t + delta_i, |delta_i| <= D (its host vertices' largest distance
+// from the map), so twice the posed area is at most s12 |e1 x e2| + 2 D s1 (|e1| + |e2|) + 4 D^2
+// (s1 = |M|, s12 = |cof M|: largest singular values). M: the least-squares fit of the cluster's
+// host vertices, bind to posed (any M gives a bound; the fit makes D small). +inf if not finite.
+float affine_ratio(const RefinementCull& c, const MeshView& host, const float* posed, uint32_t k) {
+    const uint32_t begin = c.host_begin[k], end = c.host_begin[k + 1];
+    if (end == begin) return INFINITY;
+    glm::dvec3 mean(0.0), mean_posed(0.0);
+    for (uint32_t j = begin; j < end; ++j) {
+        mean += glm::dvec3(glm::make_vec3(host.positions + size_t(c.host_vertex[j]) * 3));
+        mean_posed += glm::dvec3(glm::make_vec3(posed + size_t(c.host_vertex[j]) * 3));
+    }
+    mean /= double(end - begin);
+    mean_posed /= double(end - begin);
+    glm::dmat3 spread(0.0), cross(0.0);
+    for (uint32_t j = begin; j < end; ++j) {
+        const glm::dvec3 x =
+            glm::dvec3(glm::make_vec3(host.positions + size_t(c.host_vertex[j]) * 3)) - mean;
+        const glm::dvec3 y =
+            glm::dvec3(glm::make_vec3(posed + size_t(c.host_vertex[j]) * 3)) - mean_posed;
+        spread += glm::outerProduct(x, x);
+        cross += glm::outerProduct(y, x);
+    }
+    const double ridge = 1e-3 * (spread[0][0] + spread[1][1] + spread[2][2]) / 3.0 + 1e-30;
+    const glm::dmat3 m = cross * glm::inverse(spread + ridge * glm::dmat3(1.0));
+    double d2 = 0.0;
+    for (uint32_t j = begin; j < end; ++j) {
+        const glm::dvec3 x =
+            glm::dvec3(glm::make_vec3(host.positions + size_t(c.host_vertex[j]) * 3)) - mean;
+        const glm::dvec3 y =
+            glm::dvec3(glm::make_vec3(posed + size_t(c.host_vertex[j]) * 3)) - mean_posed;
+        const glm::dvec3 off = y - m * x;
+        d2 = std::max(d2, glm::dot(off, off));
+    }
+    const glm::dmat3 cof(glm::cross(m[1], m[2]), glm::cross(m[2], m[0]), glm::cross(m[0], m[1]));
+    const double s1 = std::sqrt(max_eigenvalue(glm::transpose(m) * m));
+    const double s12 = std::sqrt(max_eigenvalue(glm::transpose(cof) * cof));
+    const double d = std::sqrt(d2) * (1.0 + 1e-6) + 1e-7 * std::sqrt(glm::dot(mean, mean));
+    const float* a = c.affine.get() + size_t(k) * 3;
+    const double r = s12 * a[0] + 2.0 * d * s1 * a[1] + 4.0 * d * d * a[2];
+    return r == r ? float(r * (1.0 + 1e-6)) : INFINITY;
+}
+
+// sigma2, computed once per frame and render triangle (clusters' spans overlap).
+float sigma2_once(RefinementCull* c, const MeshView& host, const float* posed, uint32_t t) {
+    if (c->sigma_frame[t] != c->frame) {
+        c->sigma[t] = sigma2(*c, host, posed, t);
+        c->sigma_frame[t] = c->frame;
+    }
+    return c->sigma[t];
+}
+
+// Whether every point of the box [lo, hi] lies outside one clip plane, and the box's least
+// clip w (minus a little slack).
+bool box_outside(const glm::mat4& m, const glm::vec3& lo, const glm::vec3& hi, float* w_min) {
+    const glm::vec4 rx(m[0][0], m[1][0], m[2][0], m[3][0]);
+    const glm::vec4 ry(m[0][1], m[1][1], m[2][1], m[3][1]);
+    const glm::vec4 rz(m[0][2], m[1][2], m[2][2], m[3][2]);
+    const glm::vec4 rw(m[0][3], m[1][3], m[2][3], m[3][3]);
+    const glm::vec3 big = glm::max(glm::abs(lo), glm::abs(hi));
+    auto extreme = [&](const glm::vec4& r, bool upper, float* slack) {
+        float s = r.w;
+        for (int i = 0; i < 3; ++i) s += (r[i] > 0.0f) == upper ? r[i] * hi[i] : r[i] * lo[i];
+        *slack = 1e-5f * (std::fabs(r.x) * big.x + std::fabs(r.y) * big.y + std::fabs(r.z) * big.z +
+                          std::fabs(r.w));
+        return s;
+    };
+    float slack = 0.0f;
+    *w_min = extreme(rw, false, &slack);
+    *w_min -= slack;
+    const glm::vec4 planes[6] = {rw + rx, rw - rx, rw + ry, rw - ry, rw + rz, rw - rz};
+    for (const glm::vec4& plane : planes)
+        if (extreme(plane, true, &slack) < -slack) return true;
+    return false;
+}
+
+}  // namespace
+
+uint32_t refinement_cull(RefinementCull* c, const MeshView& host, const float* posed,
+                         const SizeParams& params, bool stretch, float near_w) {
+    c->active_count = c->list_count = 0;
+    if (++c->frame == 0) {  // the stamps wrapped: none is current
+        std::fill(c->sigma_frame.get(), c->sigma_frame.get() + host.triangle_count, 0u);
+        c->frame = 1;
+    }
+    const InkTable ink(params);
+    float ink_max = 0.0f;
+    for (float v : ink.ink) ink_max = std::max(ink_max, v);
+    const float focal = focal_pixels(params);
+    const float dot_area = 0.785398163f * params.max_point_size * params.max_point_size;
+    const float scale = (1.0f + kSlack) * ink_max * focal * focal / dot_area;
+    // Paths cross seams: each crossing can add the largest gap between welded vertices'
+    // posed positions (a path crosses at most kSpanPerEdge edges).
+    float gap = 0.0f;
+    for (uint32_t j = 0; j < c->seam_count; ++j) {
+        const glm::vec3 d = glm::make_vec3(posed + size_t(c->seam[j * 2]) * 3) -
+                            glm::make_vec3(posed + size_t(c->seam[j * 2 + 1]) * 3);
+        const float len = glm::length(d);
+        gap = len == len && gap < len ? len : (len == len ? gap : INFINITY);
+    }
+    gap *= float(kSpanPerEdge) * (1.0f + kSlack);
+    for (uint32_t k = 0; k < c->cluster_count; ++k) {
+        c->active[k] = 0;
+        const float lower = stretch ? c->lower_stretch[k] : c->lower_rest[k];
+        if (!(lower < INFINITY)) continue;  // no triangle with an area
+        if (c->lower_rest[k] >= 0.0f) {     // every corner lies in its host: the box holds
+            glm::vec3 lo(INFINITY), hi(-INFINITY);
+            bool finite = true;
+            for (uint32_t j = c->host_begin[k]; j < c->host_begin[k + 1]; ++j) {
+                const glm::vec3 p = glm::make_vec3(posed + size_t(c->host_vertex[j]) * 3);
+                finite = finite && std::fabs(p.x) < 1e30f && std::fabs(p.y) < 1e30f &&
+                         std::fabs(p.z) < 1e30f;
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
+            }
+            float w_min = 0.0f;
+            if (finite && box_outside(params.view_projection, lo, hi, &w_min)) continue;
+            if (finite) {
+                const float w = std::max(w_min, near_w);
+                const float density = scale / (w * w);
+                if (!stretch && density < lower) continue;
+                if (stretch && lower > 0.0f && gap < INFINITY) {  // 0: an edge without a path
+                    float l2 = 0.0f;
+                    for (uint32_t j = c->span_begin[k]; j < c->span_begin[k + 1]; ++j)
+                        l2 = std::max(l2, sigma2_once(c, host, posed, c->span[j]));
+                    // |posed edge| <= L g + gap <= (L + gap / g_min) g
+                    const float l = std::sqrt(l2) + gap / c->min_path[k];
+                    if (density * l * l < lower) continue;
+                }
+                // Second chance: the affine map nearest the cluster's hosts, and how far they
+                // are from it.
+                if (stretch && density * affine_ratio(*c, host, posed, k) < 1.0f) continue;
+            }
+        }
+        c->active[k] = 1;
+        c->active_list[c->active_count++] = k;
+        for (uint32_t j = c->corner_begin[k]; j < c->corner_begin[k + 1]; ++j) {
+            const uint32_t i = c->corner[j];
+            uint64_t& word = c->stamp[i / 64];
+            const uint64_t bit = uint64_t(1) << (i % 64);
+            if (word & bit) continue;
+            word |= bit;
+            c->list[c->list_count++] = i;
+        }
+    }
+    for (uint32_t j = 0; j < c->list_count; ++j) c->stamp[c->list[j] / 64] = 0;
+    return c->active_count;
+}
+
+}  // namespace stipple
