@@ -282,6 +282,28 @@ inline f8 ink_at(const InkTable& t, f8 x) {
         lo, _mm256_mul_ps(_mm256_sub_ps(hi, lo), _mm256_sub_ps(xs, _mm256_cvtepi32_ps(i))));
 }
 
+// A point's N.V (over |V|), clip w and whether either is <= 0 (Alg. 3.2's size-0 test), as
+// stipple_size.cpp computes them, for 8 points.
+struct Facing8 {
+    f8 n_dot_v, w, hidden;
+};
+inline Facing8 facing8(const SizeKernelFrame& f, f8 px, f8 py, f8 pz, f8 nx, f8 ny, f8 nz) {
+    const SizeParams& s = *f.params;
+    const f8 zero = _mm256_setzero_ps();
+    const f8 tx = _mm256_sub_ps(splat(s.eye.x), px), ty = _mm256_sub_ps(splat(s.eye.y), py),
+             tz = _mm256_sub_ps(splat(s.eye.z), pz);
+    Facing8 r;
+    r.n_dot_v =
+        _mm256_div_ps(dot3(nx, ny, nz, tx, ty, tz), _mm256_sqrt_ps(dot3(tx, ty, tz, tx, ty, tz)));
+    // glm::dot(vec4): (x + y) + (z + w), with w's product row_w[3] * 1.
+    r.w = _mm256_add_ps(
+        _mm256_add_ps(_mm256_mul_ps(splat(f.row_w[0]), px), _mm256_mul_ps(splat(f.row_w[1]), py)),
+        _mm256_add_ps(_mm256_mul_ps(splat(f.row_w[2]), pz), splat(f.row_w[3])));
+    r.hidden = _mm256_or_ps(_mm256_cmp_ps(r.n_dot_v, zero, _CMP_LE_OQ),
+                            _mm256_cmp_ps(r.w, zero, _CMP_LE_OQ));
+    return r;
+}
+
 }  // namespace
 
 // stipple_size.cpp's stipple_size (Thesis §3.1.1, §3.1.2, Alg. 3.2), 8 points at a time.
@@ -301,17 +323,8 @@ void size_stipples_avx2(const SizeKernelFrame& f, const float* positions, const 
         f8 px, py, pz, nx, ny, nz;
         xyz8(positions, run, j, i3, px, py, pz);
         xyz8(normals, run, j, i3, nx, ny, nz);
-        const f8 tx = _mm256_sub_ps(splat(s.eye.x), px), ty = _mm256_sub_ps(splat(s.eye.y), py),
-                 tz = _mm256_sub_ps(splat(s.eye.z), pz);
-        const f8 n_dot_v = _mm256_div_ps(dot3(nx, ny, nz, tx, ty, tz),
-                                         _mm256_sqrt_ps(dot3(tx, ty, tz, tx, ty, tz)));
-        // glm::dot(vec4): (x + y) + (z + w), with w's product row_w[3] * 1.
-        const f8 w =
-            _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(splat(f.row_w[0]), px),
-                                        _mm256_mul_ps(splat(f.row_w[1]), py)),
-                          _mm256_add_ps(_mm256_mul_ps(splat(f.row_w[2]), pz), splat(f.row_w[3])));
-        const f8 hidden = _mm256_or_ps(_mm256_cmp_ps(n_dot_v, zero, _CMP_LE_OQ),
-                                       _mm256_cmp_ps(w, zero, _CMP_LE_OQ));
+        const Facing8 facing = facing8(f, px, py, pz, nx, ny, nz);
+        const f8 n_dot_v = facing.n_dot_v, w = facing.w, hidden = facing.hidden;
         const f8 r_px = _mm256_div_ps(_mm256_mul_ps(one8(radius, run, j, i), splat(f.focal)), w);
         const f8 region = _mm256_mul_ps(_mm256_mul_ps(r_px, r_px), n_dot_v);
         const f8 ink = ink_at(f.table, lighting8(s, nx, ny, nz));
@@ -379,16 +392,8 @@ uint32_t cull_relevance_size_avx2(const CullKernelFrame& k, const uint32_t* list
         f8 px, py, pz, nx, ny, nz;
         xyz8(k.positions, run, first, i3, px, py, pz);
         xyz8(k.normals, run, first, i3, nx, ny, nz);
-        const f8 tx = _mm256_sub_ps(splat(s.eye.x), px), ty = _mm256_sub_ps(splat(s.eye.y), py),
-                 tz = _mm256_sub_ps(splat(s.eye.z), pz);
-        const f8 n_dot_v = _mm256_div_ps(dot3(nx, ny, nz, tx, ty, tz),
-                                         _mm256_sqrt_ps(dot3(tx, ty, tz, tx, ty, tz)));
-        const f8 w =
-            _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(splat(f.row_w[0]), px),
-                                        _mm256_mul_ps(splat(f.row_w[1]), py)),
-                          _mm256_add_ps(_mm256_mul_ps(splat(f.row_w[2]), pz), splat(f.row_w[3])));
-        const f8 hidden = _mm256_or_ps(_mm256_cmp_ps(n_dot_v, zero, _CMP_LE_OQ),
-                                       _mm256_cmp_ps(w, zero, _CMP_LE_OQ));
+        const Facing8 facing = facing8(f, px, py, pz, nx, ny, nz);
+        const f8 n_dot_v = facing.n_dot_v, w = facing.w, hidden = facing.hidden;
         const f8 ink = ink_at(f.table, lighting8(s, nx, ny, nz));
         alignas(32) uint32_t idx[8];
         _mm256_store_si256(reinterpret_cast<i8*>(idx), i);

@@ -9,6 +9,7 @@
 
 #include "runtime/point_refinement.h"
 #include "runtime/refinement_order.h"
+#include "tests/common/refined_points_buffer.h"
 
 namespace {
 
@@ -69,24 +70,7 @@ SizeParams camera(float cx, float cy, float distance, float tone) {
     return s;
 }
 
-struct Extra {
-    std::vector<float> positions, normals, radius;
-    std::vector<uint32_t> triangle, index;
-    RefinedPoints out;
-    explicit Extra(uint32_t capacity)
-        : positions(size_t(capacity) * 3),
-          normals(size_t(capacity) * 3),
-          radius(capacity),
-          triangle(capacity),
-          index(capacity) {
-        out.capacity = capacity;
-        out.positions = positions.data();
-        out.normals = normals.data();
-        out.radius = radius.data();
-        out.triangle = triangle.data();
-        out.index = index.data();
-    }
-};
+using Extra = stipple::test::RefinedPointsBuffer;
 
 PointsView no_points() {
     static const uint32_t offsets[1] = {0};

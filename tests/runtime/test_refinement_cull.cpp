@@ -18,28 +18,11 @@
 #include "runtime/point_refinement.h"
 #include "runtime/refinement_cull.h"
 #include "tests/common/fixtures.h"
+#include "tests/common/refined_points_buffer.h"
 
 namespace {
 
-struct Extra {
-    std::vector<float> positions, normals, radius;
-    std::vector<uint32_t> triangle, index;
-    stipple::RefinedPoints out;
-    stipple::RefinementStats stats;
-    explicit Extra(uint32_t capacity)
-        : positions(size_t(capacity) * 3),
-          normals(size_t(capacity) * 3),
-          radius(capacity),
-          triangle(capacity),
-          index(capacity) {
-        out.capacity = capacity;
-        out.positions = positions.data();
-        out.normals = normals.data();
-        out.radius = radius.data();
-        out.triangle = triangle.data();
-        out.index = index.data();
-    }
-};
+using Extra = stipple::test::RefinedPointsBuffer;
 
 bool same(const float* a, const float* b, size_t n) {
     return std::memcmp(a, b, n * 4) == 0;
