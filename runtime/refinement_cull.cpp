@@ -166,7 +166,9 @@ float path_bound(const MeshView& m, const Adjacency& adj, glm::vec3 x, uint32_t 
     }
     q[0] = x;
     q[n] = y;
-    for (int sweep = 0; sweep < 12; ++sweep)
+    // Sweeps until no crossing moves by 1e-4 of its edge (any crossings give a bound).
+    for (int sweep = 0; sweep < 12; ++sweep) {
+        bool moved = false;
         for (uint32_t i = 1; i < n; ++i) {
             auto length = [&](float t) {
                 const glm::vec3 p = a[i] + t * (b[i] - a[i]);
@@ -180,9 +182,12 @@ float path_bound(const MeshView& m, const Adjacency& adj, glm::vec3 x, uint32_t 
                 else
                     lo = m1;
             }
+            moved = moved || std::fabs(0.5f * (lo + hi) - s[i]) > 1e-4f;
             s[i] = 0.5f * (lo + hi);
             q[i] = a[i] + s[i] * (b[i] - a[i]);
         }
+        if (!moved) break;
+    }
     float g = 0.0f;
     for (uint32_t i = 0; i < n; ++i) g += glm::length(q[i + 1] - q[i]);
     if (g < best) {
