@@ -50,8 +50,9 @@ enum Column {
     kUpdate,
     kColumns
 };
-// With the per-point cull, "relevance" is the fused cull + relevance + size pass and "size"
-// the compaction alone (runtime/point_cull.h). "place+rel+size": the CPU stages
+// With the fused cull, "relevance" is the fused cull + relevance + size pass and "size" the
+// compaction alone (runtime/point_cull.h); with the facing list (the default) the list is in
+// "relevance". "place+rel+size": the CPU stages
 // (place with the selection, relevance, size), without the run-time refinement.
 const char* kColumnNames[kColumns] = {"pose",           "place+select",         "relevance",
                                       "refine",         "size+compact",         "silhouette",
@@ -60,7 +61,8 @@ const char* kColumnNames[kColumns] = {"pose",           "place+select",         
 struct Run {
     std::unique_ptr<stipple::Pipeline> pipeline;
     int threads = 1;
-    bool cull = true;  // the per-point cull after place (runtime/point_cull.h)
+    // The per-point cull after place (runtime/point_cull.h): facing (the default), fused, off.
+    stipple::PointCullMode mode = stipple::PointCullMode::facing;
     Series ms[kColumns];
     Series ns_per_run_point;                               // kPoints per run point
     double run = 0, placed = 0, neighbours = 0, dots = 0;  // per frame, last round
@@ -73,7 +75,9 @@ struct Case {
     std::string name, file, clip_name;
     stipple::Asset asset;
     int clip = 0;
-    Run runs[3];  // 1 and 2 threads, and 1 thread without the per-point cull (the stages before)
+    // 1 and 2 threads; 1 thread without the per-point cull (the stages before); 1 thread with
+    // the fused cull pass.
+    Run runs[4];
     std::unique_ptr<stipple::Pipeline> full;  // level of detail off: the check
     int differing = -1;                       // frames whose drawn dots differ from `full`
 };
@@ -93,7 +97,7 @@ bool parse_case(const char* arg, Case* c) {
 
 bool init_runs(Case* c, const stipple::GlApi& gl, float yaw) {
     c->clip = std::max(0, stipple::find_clip(c->asset, c->clip_name.c_str()));
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 4; ++k) {
         stipple::FrameConfig config;
         config.width = 1280;
         config.height = 720;
@@ -102,7 +106,9 @@ bool init_runs(Case* c, const stipple::GlApi& gl, float yaw) {
         config.threads = k == 1 ? 2 : 1;
         Run& r = c->runs[k];
         r.threads = config.threads;
-        r.cull = k != 2;
+        r.mode = k == 2   ? stipple::PointCullMode::off
+                 : k == 3 ? stipple::PointCullMode::fused
+                          : stipple::PointCullMode::facing;
         r.pipeline = std::make_unique<stipple::Pipeline>();
         if (!stipple::pipeline_init(r.pipeline.get(), c->asset, gl, config).ok()) return false;
         if (k > 0) continue;
@@ -124,7 +130,6 @@ bool same_dots(const stipple::Pipeline& a, const stipple::Pipeline& b) {
 // drawn dots (positions, sizes, order) must be the same bytes (docs/lod.md).
 void check_frames(Case* c) {
     c->differing = 0;
-    stipple::point_cull_enable(true);  // the per-point cull too (runtime/point_cull.h)
     for (int k = 0; k < kFrames; ++k) {
         stipple::AnimationState state;
         state.clip = c->clip;
@@ -133,7 +138,6 @@ void check_frames(Case* c) {
         stipple::pipeline_update(c->full.get(), state, nullptr);
         c->differing += !same_dots(*c->runs[0].pipeline, *c->full);
     }
-    stipple::point_cull_enable(false);
 }
 
 // Relevant neighbours of the points relevance runs on (it reads each one's position): the
@@ -154,7 +158,7 @@ void run_frames(Case* c, Run* r) {
     stipple::Pipeline* p = r->pipeline.get();
     stipple::StageTimes t;
     double run = 0, placed = 0, neighbours = 0, dots = 0, sized = 0;
-    stipple::point_cull_enable(r->cull);
+    stipple::point_cull_set_mode(r->mode);
     const uint64_t ranges = stipple::thread_pool_worker_ranges(&p->pool);
     const Clock::time_point start = Clock::now();
     for (int k = 0; k < kFrames; ++k) {
@@ -165,7 +169,7 @@ void run_frames(Case* c, Run* r) {
         const bool lod = p->config.lod && p->clusters.cluster_count > 0;
         run += lod ? p->clusters.run_count : p->asset->points.point_count;
         placed += lod ? p->clusters.placed_count : p->asset->points.point_count;
-        neighbours += run_neighbours(*p, r->cull);
+        neighbours += run_neighbours(*p, r->mode != stipple::PointCullMode::off);
         sized += lod ? p->clusters.stats.points_sized : p->asset->points.point_count;
         dots += p->points_drawn;
     }
@@ -184,7 +188,7 @@ void run_frames(Case* c, Run* r) {
     for (int k = 0; k < kColumns; ++k) r->ms[k].v.push_back(cols[k]);
     r->run = run * f, r->placed = placed * f, r->neighbours = neighbours * f, r->dots = dots * f;
     r->sized = sized * f;
-    stipple::point_cull_enable(false);  // the default
+    stipple::point_cull_set_mode(stipple::PointCullMode::facing);  // the default
     r->ns_per_run_point.v.push_back(cols[kStages] * 1e6 / std::max(r->run, 1.0));
 }
 
@@ -192,12 +196,17 @@ void run_frames(Case* c, Run* r) {
 // normal of each placed point; relevance reads offset, scale and position of each run point,
 // index and position of each neighbour, writes the radius; size reads position, normal and
 // radius, writes the size (the posed mesh's vertices are cache resident: not counted). With
-// the cull: the list entry, position, normal, bind bounds and cluster of each run point, then
-// offset, scale, radius and size of each kept one and its neighbours.
+// the fused cull: the list entry, position, normal, bind bounds and cluster of each run point,
+// then offset, scale, radius and size of each kept one and its neighbours. With the facing
+// list: the list entry, position and normal of each run point and the kept list written, then
+// relevance and size as above over the kept points.
 double stage_bytes(const Run& r) {
-    if (r.cull)
+    if (r.mode == stipple::PointCullMode::fused)
         return r.placed * (12 + 24) + r.run * (4 + 12 + 12 + 8 + 4) + r.sized * (4 + 4 + 4 + 4) +
                r.neighbours * (4 + 12);
+    if (r.mode == stipple::PointCullMode::facing)
+        return r.placed * (12 + 24) + r.run * (4 + 12 + 12 + 4) +
+               r.sized * (4 + 4 + 4 + 4 + 4 + 12 + 12 + 4 + 4) + r.neighbours * (4 + 12);
     return r.placed * (12 + 24) + r.run * (4 + 4 + 12 + 4) + r.neighbours * (4 + 12) +
            r.run * (12 + 12 + 4 + 4);
 }
@@ -229,7 +238,10 @@ void print_stages(const std::vector<Case>& cases) {
     std::printf(" ---: | ---: |\n");
     for (const Case& c : cases)
         for (const Run& r : c.runs) {
-            std::printf("| %s | %d%s |", c.name.c_str(), r.threads, r.cull ? "" : ", no cull");
+            const char* mode = r.mode == stipple::PointCullMode::off     ? ", no cull"
+                               : r.mode == stipple::PointCullMode::fused ? ", fused cull"
+                                                                         : "";
+            std::printf("| %s | %d%s |", c.name.c_str(), r.threads, mode);
             for (const Series& s : r.ms) std::printf(" %s |", mm(s).c_str());
             std::printf(" %.0f (%.0f), sized %.0f | %.0f |\n", r.run, r.placed, r.sized, r.dots);
         }
@@ -323,7 +335,7 @@ int main(int argc, char** argv) {
     for (int round = 0; round < rounds; ++round) {
         bw.v.push_back(bandwidth(&src, &dst));
         for (size_t i = 0; i < cases.size(); ++i)
-            for (int k = 0; k < 3; ++k) {
+            for (int k = 0; k < 4; ++k) {
                 Case& c = cases[(i + size_t(round)) % cases.size()];
                 run_frames(&c, &c.runs[(k + round) % 3]);
             }

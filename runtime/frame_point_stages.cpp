@@ -73,21 +73,29 @@ void lod_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
                                     p->point_positions.get(), p->point_normals.get(),
                                     p->size_params.eye);
     if (t) t->place += ms_since(clock);
-    // The per-point cull, relevance and size in one pass (runtime/point_cull.h): the run
-    // points' sizes are 0 here (cleared above), and stay so where the bound says size 0.
-    if (point_cull_enabled()) {
+    // The per-point cull, relevance and size in one pass (runtime/point_cull.h; opt-in, for
+    // the benches' A/B): the run points' sizes are 0 here (cleared above), and stay so where
+    // the bound says size 0.
+    if (point_cull_mode() == PointCullMode::fused) {
         c.stats.points_sized = point_stage_cull_relevance_size(
             &p->pool, f, c, p->config.relevance_update, run, c.run_count);
         if (t) t->relevance += ms_since(clock);  // the fused pass: relevance and size
         return;
     }
-    if (p->config.relevance_update)  // without the cull (benches, tests): every run point
-        point_stage_relevance(&p->pool, f, run, c.run_count);
+    // The cull's exact part alone (runtime/point_cull.h): run points facing away or behind
+    // the eye keep size 0 and skip relevance and size; the others go through the separate
+    // kernels (c.rest is scratch until the refinement stage).
+    const bool facing = point_cull_mode() == PointCullMode::facing;
+    const uint32_t* kept = facing ? c.rest.get() : run;
+    const uint32_t n =
+        facing ? point_facing_list(f, c, run, c.run_count, c.rest.get()) : c.run_count;
+    if (p->config.relevance_update)
+        point_stage_relevance(&p->pool, f, kept, n);
     else
-        for (uint32_t j = 0; j < c.run_count; ++j) p->radius[run[j]] = p->rest_radius[run[j]];
+        for (uint32_t j = 0; j < n; ++j) p->radius[kept[j]] = p->rest_radius[kept[j]];
     if (t) t->relevance += ms_since(clock);
-    point_stage_size(&p->pool, f, run, c.run_count);
-    c.stats.points_sized = c.run_count;
+    point_stage_size(&p->pool, f, kept, n);
+    c.stats.points_sized = n;
     if (t) t->size += ms_since(clock);
 }
 

@@ -26,7 +26,7 @@ CullKernelFrame::CullKernelFrame(const PointStageFrame& f, const PointClusters& 
 
 namespace {
 
-std::atomic<bool> g_cull{false};  // off by default: see point_cull.h
+std::atomic<PointCullMode> g_cull{PointCullMode::facing};  // see point_cull.h
 std::atomic<bool> g_radius_bound{false};
 
 // stipple_size.cpp's stipple_size after its facing test, for a given radius (Alg. 3.2,
@@ -39,18 +39,31 @@ inline float size_for_radius(const CullKernelFrame& k, float radius, float n_dot
     return smooth_point_size(ink, region_px, params.max_point_size, params.smooth_slope);
 }
 
+// A placed point's N.V (over |V|) and clip w, as stipple_size.cpp computes them.
+struct Facing {
+    glm::vec3 n;
+    float n_dot_v, w;
+};
+inline Facing facing(const SizeKernelFrame& sizing, const float* positions, const float* normals,
+                     uint32_t i) {
+    const float* pp = positions + size_t(i) * 3;
+    const float* np = normals + size_t(i) * 3;
+    const glm::vec3 p(pp[0], pp[1], pp[2]);
+    Facing r;
+    r.n = glm::vec3(np[0], np[1], np[2]);
+    const glm::vec3 to_eye = sizing.params->eye - p;
+    r.n_dot_v = glm::dot(r.n, to_eye) / glm::length(to_eye);
+    const glm::vec4 row_w(sizing.row_w[0], sizing.row_w[1], sizing.row_w[2], sizing.row_w[3]);
+    r.w = glm::dot(row_w, glm::vec4(p, 1.0f));
+    return r;
+}
+
 // One point: whether it is kept, and then its radius and size.
 inline bool cull_point(const CullKernelFrame& k, uint32_t i) {
     const SizeParams& params = *k.sizing.params;
-    const float* pp = k.positions + size_t(i) * 3;
-    const float* np = k.normals + size_t(i) * 3;
-    const glm::vec3 p(pp[0], pp[1], pp[2]);
-    const glm::vec3 n(np[0], np[1], np[2]);
-    const glm::vec3 to_eye = params.eye - p;
-    const float n_dot_v = glm::dot(n, to_eye) / glm::length(to_eye);
-    const glm::vec4 row_w(k.sizing.row_w[0], k.sizing.row_w[1], k.sizing.row_w[2],
-                          k.sizing.row_w[3]);
-    const float w = glm::dot(row_w, glm::vec4(p, 1.0f));
+    const Facing fc = facing(k.sizing, k.positions, k.normals, i);
+    const glm::vec3 n = fc.n;
+    const float n_dot_v = fc.n_dot_v, w = fc.w;
     const bool forced = (k.forced_bits[i >> 6] >> (i & 63)) & 1;
     const bool hidden = n_dot_v <= 0.0f || w <= 0.0f;
     float ink = 0.0f;
@@ -87,11 +100,11 @@ void cull_range(void* context, uint32_t begin, uint32_t end) {
 
 }  // namespace
 
-void point_cull_enable(bool on) {
-    g_cull.store(on, std::memory_order_relaxed);
+void point_cull_set_mode(PointCullMode mode) {
+    g_cull.store(mode, std::memory_order_relaxed);
 }
 
-bool point_cull_enabled() {
+PointCullMode point_cull_mode() {
     return g_cull.load(std::memory_order_relaxed);
 }
 
@@ -108,6 +121,21 @@ uint32_t cull_relevance_size(const CullKernelFrame& k, const uint32_t* list, uin
     uint32_t kept = 0;
     for (uint32_t j = begin; j < end; ++j) kept += cull_point(k, list[j]);
     return kept;
+}
+
+uint32_t point_facing_list(const PointStageFrame& f, const PointClusters& c, const uint32_t* list,
+                           uint32_t count, uint32_t* kept) {
+    const SizeKernelFrame sizing(*f.params);
+    const uint64_t* forced = c.forced_bits.get();
+    uint32_t n = 0;
+    for (uint32_t j = 0; j < count; ++j) {
+        const uint32_t i = list[j];
+        const Facing fc = facing(sizing, f.positions, f.normals, i);
+        const bool shown = !(fc.n_dot_v <= 0.0f || fc.w <= 0.0f);  // as cull_point: NaN kept
+        kept[n] = i;
+        n += shown || ((forced[i >> 6] >> (i & 63)) & 1);
+    }
+    return n;
 }
 
 uint32_t point_stage_cull_relevance_size(ThreadPool* pool, const PointStageFrame& f,

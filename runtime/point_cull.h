@@ -16,11 +16,12 @@
 // it skips relevance and size. A NaN bound keeps the point. The other points get Alg. 6.4's
 // radius and Alg. 3.2's size in the same pass, each point read once.
 //
-// By default only the exact part runs: points facing away (N.V <= 0) or behind the eye
-// (w <= 0) get size 0 whatever their radius, and skip relevance and size (about 35-45% of the
-// run points on CesiumMan's walk). The radius bound's test is opt-in
-// (point_cull_radius_bound): per point it does NOT hold (see there); the cut gets away with
-// the same radius bound only through its cluster-wide slack. Paintstroke roots
+// Frames run only the exact part, as its own pass (point_facing_list): points facing away
+// (N.V <= 0) or behind the eye (w <= 0) get size 0 whatever their radius, and skip relevance
+// and size (about 35-45% of the run points on CesiumMan's walk); the others go through the
+// separate relevance and size kernels. The fused pass (PointCullMode::fused) is opt-in. The radius
+// bound's test is opt-in (point_cull_radius_bound): per point it does NOT hold (see there); the cut
+// gets away with the same radius bound only through its cluster-wide slack. Paintstroke roots
 // (PointClusters::forced) always get their radius (the stroke stage reads it). The sizes of culled
 // points are not written: the caller clears the run points' sizes before (frame_point_stages.cpp),
 // and their radii keep the last value computed for them (the rest pose's from the first
@@ -77,13 +78,24 @@ uint32_t point_stage_cull_relevance_size(ThreadPool* pool, const PointStageFrame
                                          const PointClusters& c, bool relevance_update,
                                          const uint32_t* list, uint32_t count);
 
-// The cull for the whole process (call between frames). OFF by default: on this 2-core
-// machine the fused pass (AVX2: 8 points' facing and sizes a step, the kept lanes' relevance
-// one point at a time) measured slower than the separate relevance and size kernels over
-// every run point although it skips 35-47% of them (docs/performance.md); off, the frame runs
-// those kernels as before. Benches and tests turn it on.
-void point_cull_enable(bool on);
-bool point_cull_enabled();
+// The exact part of the cull alone, for the separate relevance and size kernels: lists into
+// kept, in their order, the points of list[0 .. count) that face the eye and lie in front of
+// it (N.V > 0 and clip w > 0, computed as the size rule computes them), and the forced ones
+// (paintstroke roots); returns how many. Every other point of the list has size 0 whatever its
+// radius (Alg. 3.2). kept may not alias list.
+uint32_t point_facing_list(const PointStageFrame& f, const PointClusters& c, const uint32_t* list,
+                           uint32_t count, uint32_t* kept);
+
+// Which per-point cull frames run, for the whole process (call between frames; the benches'
+// A/B). facing (the default): point_facing_list, then the separate relevance and size kernels
+// over the kept points. fused: point_stage_cull_relevance_size, which on this 2-core machine
+// (AVX2: 8 points' facing and sizes a step, the kept lanes' relevance one point at a time)
+// measured slower than the separate kernels over every run point although it skips 35-47% of
+// them (docs/performance.md). off: the separate kernels over every run point (the stages
+// before the cull).
+enum class PointCullMode { facing, fused, off };
+void point_cull_set_mode(PointCullMode mode);
+PointCullMode point_cull_mode();
 
 // The radius bound's test (off by default; benches and tests turn it on). NOT exact: on
 // CesiumMan's walk (60k points, 1280x720) 4-13 run points a frame, the coarsest ones, get a

@@ -42,7 +42,7 @@ class PointCull : public ::testing::Test {
     }
     void TearDown() override {
         stipple::point_simd_force(stipple::point_simd_detected());
-        stipple::point_cull_enable(false);  // the default
+        stipple::point_cull_set_mode(stipple::PointCullMode::facing);  // the default
     }
 
     std::unique_ptr<Pipeline> make(const stipple::FrameConfig& config) {
@@ -81,42 +81,57 @@ stipple::FrameConfig random_config(std::mt19937* rng) {
     return c;
 }
 
+// Every dot of the last update the renderer would keep (centre inside the image and the depth
+// range): index, screen position and size. The level of detail skips the rest.
+std::vector<float> drawable_dots(const Pipeline& p) {
+    std::vector<float> out;
+    for (uint32_t i = 0; i < p.asset->points.point_count; ++i) {
+        if (!(p.size[i] > 0.0f)) continue;
+        const glm::vec3 s = stipple::pipeline_project(p, i);
+        if (s.x >= 0.0f && s.y >= 0.0f && s.x < float(p.config.width) &&
+            s.y < float(p.config.height) && s.z >= 0.0f && s.z <= 1.0f)
+            out.insert(out.end(), {float(i), s.x, s.y, p.size[i]});
+    }
+    return out;
+}
+
+// The level of detail with each per-point cull mode (the default: the facing list, then the
+// separate relevance and size kernels; the fused pass; none) draws the dots of the full stages,
+// which run every point through relevance and size without the level of detail: the same
+// points at the same places with the same sizes bit for bit.
 TEST_F(PointCull, SizesAndDotsAreThoseWithoutTheCullOnRandomCases) {
     std::mt19937 rng(1234);
     uint64_t run_total = 0, sized_total = 0, drawn_total = 0;
     for (int trial = 0; trial < 12; ++trial) {
         const stipple::FrameConfig config = random_config(&rng);
-        std::unique_ptr<Pipeline> p = make(config);
-        ASSERT_TRUE(p);
-        const uint32_t n = asset_.points.point_count;
+        stipple::FrameConfig every = config;
+        every.lod = false;
+        std::unique_ptr<Pipeline> p = make(config), full = make(every);
+        ASSERT_TRUE(p && full);
         for (int f = 0; f < 3; ++f) {
             stipple::AnimationState state;
             state.time = std::uniform_real_distribution<float>(0.0f, 2.0f)(rng);
-            const std::string what =
-                "trial " + std::to_string(trial) + ", frame " + std::to_string(f);
-            // Without the cull: every run point's radius and size.
-            stipple::point_cull_enable(false);
-            stipple::pipeline_update(p.get(), state, nullptr);
-            const std::vector<float> size(p->size.get(), p->size.get() + n);
-            const std::vector<float> draw(p->draw_positions.get(),
-                                          p->draw_positions.get() + size_t(p->points_drawn) * 3);
-            const std::vector<float> draw_size(p->draw_sizes.get(),
-                                               p->draw_sizes.get() + p->points_drawn);
-            // With the cull: the same sizes (every point) and the same drawn dots.
-            stipple::point_cull_enable(true);
-            stipple::pipeline_update(p.get(), state, nullptr);
-            EXPECT_TRUE(same_floats(size.data(), p->size.get(), n)) << what;
-            ASSERT_EQ(draw_size.size(), p->points_drawn) << what;
-            EXPECT_TRUE(same_floats(draw.data(), p->draw_positions.get(), draw.size())) << what;
-            EXPECT_TRUE(same_floats(draw_size.data(), p->draw_sizes.get(), draw_size.size()))
-                << what;
-            EXPECT_LE(p->clusters.stats.points_sized, p->clusters.run_count);
-            EXPECT_GE(p->clusters.stats.points_sized, p->points_drawn);
+            stipple::pipeline_update(full.get(), state, nullptr);
+            const std::vector<float> dots = drawable_dots(*full);
+            for (stipple::PointCullMode mode :
+                 {stipple::PointCullMode::off, stipple::PointCullMode::fused,
+                  stipple::PointCullMode::facing}) {  // the default last: the stats below
+                const std::string what = "trial " + std::to_string(trial) + ", frame " +
+                                         std::to_string(f) + ", mode " + std::to_string(int(mode));
+                stipple::point_cull_set_mode(mode);
+                stipple::pipeline_update(p.get(), state, nullptr);
+                const std::vector<float> lod = drawable_dots(*p);
+                ASSERT_EQ(lod.size(), dots.size()) << what;
+                EXPECT_TRUE(same_floats(lod.data(), dots.data(), dots.size())) << what;
+                EXPECT_LE(p->clusters.stats.points_sized, p->clusters.run_count);
+                EXPECT_GE(p->clusters.stats.points_sized, p->points_drawn);
+            }
             run_total += p->clusters.run_count;
             sized_total += p->clusters.stats.points_sized;
-            drawn_total += p->points_drawn;
+            drawn_total += dots.size() / 4;
         }
         stipple::pipeline_destroy(p.get());
+        stipple::pipeline_destroy(full.get());
     }
     EXPECT_GT(drawn_total, 1000u);
     // The cull does its job: fewer points get relevance and size than the cut runs (the
