@@ -82,9 +82,9 @@ void lod_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
         if (t) t->relevance += ms_since(clock);  // the fused pass: relevance and size
         return;
     }
-    // The cull's exact part alone (runtime/point_cull.h): run points facing away or behind
-    // the eye keep size 0 and skip relevance and size; the others go through the separate
-    // kernels (c.rest is scratch until the refinement stage).
+    // With the facing list (opt-in, runtime/point_cull.h) run points facing away or behind the
+    // eye keep size 0 and skip relevance and size (c.rest is scratch until the refinement
+    // stage); by default every run point goes through the separate kernels.
     const bool facing = point_cull_mode() == PointCullMode::facing;
     const uint32_t* kept = facing ? c.rest.get() : run;
     const uint32_t n =

@@ -26,7 +26,7 @@ CullKernelFrame::CullKernelFrame(const PointStageFrame& f, const PointClusters& 
 
 namespace {
 
-std::atomic<PointCullMode> g_cull{PointCullMode::facing};  // see point_cull.h
+std::atomic<PointCullMode> g_cull{PointCullMode::off};  // see point_cull.h
 std::atomic<bool> g_radius_bound{false};
 
 // stipple_size.cpp's stipple_size after its facing test, for a given radius (Alg. 3.2,
@@ -125,13 +125,22 @@ uint32_t cull_relevance_size(const CullKernelFrame& k, const uint32_t* list, uin
 
 uint32_t point_facing_list(const PointStageFrame& f, const PointClusters& c, const uint32_t* list,
                            uint32_t count, uint32_t* kept) {
-    const SizeKernelFrame sizing(*f.params);
+    // N.(eye - p) instead of the size rule's N.V over |V|: the same sign, or > 0 where the
+    // quotient underflows to 0 (then the point is kept and sized 0: a superset, still exact).
+    // w as the size rule computes it.
+    const glm::vec3 eye = f.params->eye;
+    const glm::mat4& m = f.params->view_projection;
+    const glm::vec4 row_w(m[0][3], m[1][3], m[2][3], m[3][3]);
     const uint64_t* forced = c.forced_bits.get();
     uint32_t n = 0;
     for (uint32_t j = 0; j < count; ++j) {
         const uint32_t i = list[j];
-        const Facing fc = facing(sizing, f.positions, f.normals, i);
-        const bool shown = !(fc.n_dot_v <= 0.0f || fc.w <= 0.0f);  // as cull_point: NaN kept
+        const float* pp = f.positions + size_t(i) * 3;
+        const float* np = f.normals + size_t(i) * 3;
+        const glm::vec3 p(pp[0], pp[1], pp[2]);
+        const float d = glm::dot(glm::vec3(np[0], np[1], np[2]), eye - p);
+        const float w = glm::dot(row_w, glm::vec4(p, 1.0f));
+        const bool shown = !(d <= 0.0f || w <= 0.0f);  // as cull_point: NaN kept
         kept[n] = i;
         n += shown || ((forced[i >> 6] >> (i & 63)) & 1);
     }

@@ -16,17 +16,19 @@
 // it skips relevance and size. A NaN bound keeps the point. The other points get Alg. 6.4's
 // radius and Alg. 3.2's size in the same pass, each point read once.
 //
-// Frames run only the exact part, as its own pass (point_facing_list): points facing away
-// (N.V <= 0) or behind the eye (w <= 0) get size 0 whatever their radius, and skip relevance
-// and size (about 35-45% of the run points on CesiumMan's walk); the others go through the
-// separate relevance and size kernels. The fused pass (PointCullMode::fused) is opt-in. The radius
-// bound's test is opt-in (point_cull_radius_bound): per point it does NOT hold (see there); the cut
-// gets away with the same radius bound only through its cluster-wide slack. Paintstroke roots
-// (PointClusters::forced) always get their radius (the stroke stage reads it). The sizes of culled
-// points are not written: the caller clears the run points' sizes before (frame_point_stages.cpp),
-// and their radii keep the last value computed for them (the rest pose's from the first
-// level-of-detail frame on), which nothing reads (only drawn dots' sizes and stroke roots' radii
-// are read).
+// The exact part: points facing away (N.V <= 0) or behind the eye (w <= 0) get size 0
+// whatever their radius, and could skip relevance and size (about 35-45% of the run points on
+// CesiumMan's walk). Two ways to run it, both opt-in (PointCullMode): its own pass listing the
+// kept points (point_facing_list) before the separate relevance and size kernels, or fused
+// with them. Neither beat the separate kernels over every run point on this 2-core machine
+// (docs/performance.md), so frames run those. The radius bound's test is opt-in too
+// (point_cull_radius_bound): per point it does NOT hold (see there); the cut gets away with
+// the same radius bound only through its cluster-wide slack. Paintstroke roots
+// (PointClusters::forced) always get their radius (the stroke stage reads it). The sizes of
+// culled points are not written: the caller clears the run points' sizes before
+// (frame_point_stages.cpp), and their radii keep the last value computed for them (the rest
+// pose's from the first level-of-detail frame on), which nothing reads (only drawn dots'
+// sizes and stroke roots' radii are read).
 #pragma once
 #include <cstdint>
 
@@ -87,13 +89,13 @@ uint32_t point_facing_list(const PointStageFrame& f, const PointClusters& c, con
                            uint32_t count, uint32_t* kept);
 
 // Which per-point cull frames run, for the whole process (call between frames; the benches'
-// A/B). facing (the default): point_facing_list, then the separate relevance and size kernels
-// over the kept points. fused: point_stage_cull_relevance_size, which on this 2-core machine
-// (AVX2: 8 points' facing and sizes a step, the kept lanes' relevance one point at a time)
-// measured slower than the separate kernels over every run point although it skips 35-47% of
-// them (docs/performance.md). off: the separate kernels over every run point (the stages
-// before the cull).
-enum class PointCullMode { facing, fused, off };
+// A/B). off (the default): the separate relevance and size kernels over every run point.
+// facing: point_facing_list, then those kernels over the kept points (the list pass and the
+// kernels' gathers over a sparse list cost more than the 35-45% of the points they skip:
+// relevance + size 0.85 against 0.76 ms at 100k, docs/performance.md). fused:
+// point_stage_cull_relevance_size (AVX2: 8 points' facing and sizes a step, the kept lanes'
+// relevance one point at a time), slower still.
+enum class PointCullMode { off, facing, fused };
 void point_cull_set_mode(PointCullMode mode);
 PointCullMode point_cull_mode();
 
