@@ -20,7 +20,6 @@
 #include "bench/bench_asset.h"
 #include "platform/headless_context.h"
 #include "runtime/frame_pipeline.h"
-#include "runtime/point_cull.h"
 
 namespace {
 
@@ -50,10 +49,8 @@ enum Column {
     kUpdate,
     kColumns
 };
-// With the fused cull, "relevance" is the fused cull + relevance + size pass and "size" the
-// compaction alone (runtime/point_cull.h); with the facing list (the default) the list is in
-// "relevance". "place+rel+size": the CPU stages
-// (place with the selection, relevance, size), without the run-time refinement.
+// "place+rel+size": the CPU stages (place with the selection, relevance, size),
+// without the run-time refinement.
 const char* kColumnNames[kColumns] = {"pose",           "place+select",         "relevance",
                                       "refine",         "size+compact",         "silhouette",
                                       "place+rel+size", "points (place..size)", "update"};
@@ -61,12 +58,9 @@ const char* kColumnNames[kColumns] = {"pose",           "place+select",         
 struct Run {
     std::unique_ptr<stipple::Pipeline> pipeline;
     int threads = 1;
-    // The per-point cull after place (runtime/point_cull.h): off (the default), facing, fused.
-    stipple::PointCullMode mode = stipple::PointCullMode::off;
     Series ms[kColumns];
     Series ns_per_run_point;                               // kPoints per run point
     double run = 0, placed = 0, neighbours = 0, dots = 0;  // per frame, last round
-    double sized = 0;  // run points the cull kept (relevance and size), per frame
     double worker_ranges =
         0;  // per frame, over every round: ranges the worker (not the caller) ran
 };
@@ -75,9 +69,7 @@ struct Case {
     std::string name, file, clip_name;
     stipple::Asset asset;
     int clip = 0;
-    // 1 and 2 threads as frames run (no per-point cull); 1 thread with the facing list, and
-    // with the fused cull pass.
-    Run runs[4];
+    Run runs[2];                              // 1 and 2 threads
     std::unique_ptr<stipple::Pipeline> full;  // level of detail off: the check
     int differing = -1;                       // frames whose drawn dots differ from `full`
 };
@@ -97,7 +89,7 @@ bool parse_case(const char* arg, Case* c) {
 
 bool init_runs(Case* c, const stipple::GlApi& gl, float yaw) {
     c->clip = std::max(0, stipple::find_clip(c->asset, c->clip_name.c_str()));
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < 2; ++k) {
         stipple::FrameConfig config;
         config.width = 1280;
         config.height = 720;
@@ -106,9 +98,6 @@ bool init_runs(Case* c, const stipple::GlApi& gl, float yaw) {
         config.threads = k == 1 ? 2 : 1;
         Run& r = c->runs[k];
         r.threads = config.threads;
-        r.mode = k == 2   ? stipple::PointCullMode::facing
-                 : k == 3 ? stipple::PointCullMode::fused
-                          : stipple::PointCullMode::off;
         r.pipeline = std::make_unique<stipple::Pipeline>();
         if (!stipple::pipeline_init(r.pipeline.get(), c->asset, gl, config).ok()) return false;
         if (k > 0) continue;
@@ -140,25 +129,21 @@ void check_frames(Case* c) {
     }
 }
 
-// Relevant neighbours of the points relevance runs on (it reads each one's position): the
-// run points, or with the cull those it kept (size > 0 or a paintstroke root; an upper bound
-// on those it kept is not needed: a kept point of size 0 is rare).
-double run_neighbours(const stipple::Pipeline& p, bool cull) {
+// Relevant neighbours of the points relevance runs on (it reads each one's position).
+double run_neighbours(const stipple::Pipeline& p) {
     const stipple::PointsView& pts = p.asset->points;
     const stipple::PointClusters& c = p.clusters;
     if (!p.config.lod || c.cluster_count == 0) return double(pts.neighbour_count);
     double n = 0;
     for (uint32_t j = 0; j < c.run_count; ++j)
-        if (!cull || p.size[c.run[j]] > 0.0f)
-            n += pts.neighbour_offsets[c.run[j] + 1] - pts.neighbour_offsets[c.run[j]];
+        n += pts.neighbour_offsets[c.run[j] + 1] - pts.neighbour_offsets[c.run[j]];
     return n;
 }
 
 void run_frames(Case* c, Run* r) {
     stipple::Pipeline* p = r->pipeline.get();
     stipple::StageTimes t;
-    double run = 0, placed = 0, neighbours = 0, dots = 0, sized = 0;
-    stipple::point_cull_set_mode(r->mode);
+    double run = 0, placed = 0, neighbours = 0, dots = 0;
     const uint64_t ranges = stipple::thread_pool_worker_ranges(&p->pool);
     const Clock::time_point start = Clock::now();
     for (int k = 0; k < kFrames; ++k) {
@@ -169,8 +154,7 @@ void run_frames(Case* c, Run* r) {
         const bool lod = p->config.lod && p->clusters.cluster_count > 0;
         run += lod ? p->clusters.run_count : p->asset->points.point_count;
         placed += lod ? p->clusters.placed_count : p->asset->points.point_count;
-        neighbours += run_neighbours(*p, r->mode != stipple::PointCullMode::off);
-        sized += lod ? p->clusters.stats.points_sized : p->asset->points.point_count;
+        neighbours += run_neighbours(*p);
         dots += p->points_drawn;
     }
     const double update = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -187,26 +171,14 @@ void run_frames(Case* c, Run* r) {
                                    update * f};
     for (int k = 0; k < kColumns; ++k) r->ms[k].v.push_back(cols[k]);
     r->run = run * f, r->placed = placed * f, r->neighbours = neighbours * f, r->dots = dots * f;
-    r->sized = sized * f;
-    stipple::point_cull_set_mode(stipple::PointCullMode::off);  // the default
     r->ns_per_run_point.v.push_back(cols[kStages] * 1e6 / std::max(r->run, 1.0));
 }
 
 // Bytes the point stages stream per frame: place reads host, u, v and writes position and
 // normal of each placed point; relevance reads offset, scale and position of each run point,
 // index and position of each neighbour, writes the radius; size reads position, normal and
-// radius, writes the size (the posed mesh's vertices are cache resident: not counted). With
-// the fused cull: the list entry, position, normal, bind bounds and cluster of each run point,
-// then offset, scale, radius and size of each kept one and its neighbours. With the facing
-// list: the list entry, position and normal of each run point and the kept list written, then
-// relevance and size as above over the kept points.
+// radius, writes the size (the posed mesh's vertices are cache resident: not counted).
 double stage_bytes(const Run& r) {
-    if (r.mode == stipple::PointCullMode::fused)
-        return r.placed * (12 + 24) + r.run * (4 + 12 + 12 + 8 + 4) + r.sized * (4 + 4 + 4 + 4) +
-               r.neighbours * (4 + 12);
-    if (r.mode == stipple::PointCullMode::facing)
-        return r.placed * (12 + 24) + r.run * (4 + 12 + 12 + 4) +
-               r.sized * (4 + 4 + 4 + 4 + 4 + 12 + 12 + 4 + 4) + r.neighbours * (4 + 12);
     return r.placed * (12 + 24) + r.run * (4 + 4 + 12 + 4) + r.neighbours * (4 + 12) +
            r.run * (12 + 12 + 4 + 4);
 }
@@ -233,17 +205,14 @@ std::string mm(const Series& s) {
 void print_stages(const std::vector<Case>& cases) {
     std::printf("| asset | threads |");
     for (const char* name : kColumnNames) std::printf(" %s |", name);
-    std::printf(" points run (placed), sized | dots |\n| --- | ---: |");
+    std::printf(" points run (placed) | dots |\n| --- | ---: |");
     for (int k = 0; k < kColumns; ++k) std::printf(" ---: |");
     std::printf(" ---: | ---: |\n");
     for (const Case& c : cases)
         for (const Run& r : c.runs) {
-            const char* mode = r.mode == stipple::PointCullMode::facing  ? ", facing list"
-                               : r.mode == stipple::PointCullMode::fused ? ", fused cull"
-                                                                         : "";
-            std::printf("| %s | %d%s |", c.name.c_str(), r.threads, mode);
+            std::printf("| %s | %d |", c.name.c_str(), r.threads);
             for (const Series& s : r.ms) std::printf(" %s |", mm(s).c_str());
-            std::printf(" %.0f (%.0f), sized %.0f | %.0f |\n", r.run, r.placed, r.sized, r.dots);
+            std::printf(" %.0f (%.0f) | %.0f |\n", r.run, r.placed, r.dots);
         }
 }
 
@@ -255,25 +224,19 @@ void print_bounds(const std::vector<Case>& cases, const Series& bw) {
         *std::max_element(bw.v.begin(), bw.v.end()), bw.median());
     std::printf(
         "| asset | bytes per frame | bound ms | 1 thread ms (min / median) | 1T / bound | "
-        "ns per run point 1T | bound ns per run point | 2 threads ms | 1T / 2T (min, median) | "
-        "facing list, 1T ms | facing list / bound |\n"
-        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+        "ns per run point 1T | bound ns per run point | 2 threads ms | 1T / 2T (min, median) |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     const double best = *std::max_element(bw.v.begin(), bw.v.end());
     for (const Case& c : cases) {
         const Run& one = c.runs[0];
         const Run& two = c.runs[1];
-        const Run& facing = c.runs[2];
         const double bytes = stage_bytes(one), bound_ms = bytes / best * 1e-6;
-        const double facing_bound_ms = stage_bytes(facing) / best * 1e-6;
-        std::printf(
-            "| %s | %.2f MB | %.3f | %s | %.1f | %.1f / %.1f | %.1f | %s | %.2f, %.2f | %s | %.1f "
-            "|\n",
-            c.name.c_str(), bytes * 1e-6, bound_ms, mm(one.ms[kStages]).c_str(),
-            one.ms[kStages].min() / bound_ms, one.ns_per_run_point.min(),
-            one.ns_per_run_point.median(), bytes / best / std::max(one.run, 1.0),
-            mm(two.ms[kStages]).c_str(), one.ms[kStages].min() / two.ms[kStages].min(),
-            one.ms[kStages].median() / two.ms[kStages].median(), mm(facing.ms[kStages]).c_str(),
-            facing.ms[kStages].min() / facing_bound_ms);
+        std::printf("| %s | %.2f MB | %.3f | %s | %.1f | %.1f / %.1f | %.1f | %s | %.2f, %.2f |\n",
+                    c.name.c_str(), bytes * 1e-6, bound_ms, mm(one.ms[kStages]).c_str(),
+                    one.ms[kStages].min() / bound_ms, one.ns_per_run_point.min(),
+                    one.ns_per_run_point.median(), bytes / best / std::max(one.run, 1.0),
+                    mm(two.ms[kStages]).c_str(), one.ms[kStages].min() / two.ms[kStages].min(),
+                    one.ms[kStages].median() / two.ms[kStages].median());
     }
 }
 
@@ -335,9 +298,9 @@ int main(int argc, char** argv) {
     for (int round = 0; round < rounds; ++round) {
         bw.v.push_back(bandwidth(&src, &dst));
         for (size_t i = 0; i < cases.size(); ++i)
-            for (int k = 0; k < 4; ++k) {
+            for (int k = 0; k < 2; ++k) {
                 Case& c = cases[(i + size_t(round)) % cases.size()];
-                run_frames(&c, &c.runs[(k + round) % 4]);
+                run_frames(&c, &c.runs[(k + round) % 2]);
             }
     }
     std::printf("1280x720, %d interleaved rounds of %d frames, ms per frame (min / median)\n\n",

@@ -4,7 +4,6 @@
 #include <cstring>
 
 #include "runtime/double_sided.h"
-#include "runtime/point_cull.h"
 #include "runtime/point_placement.h"
 #include "runtime/point_stages.h"
 
@@ -43,15 +42,14 @@ void full_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
 }
 
 // The same over the clusters' selection (thesis §9.1.1, runtime/point_clusters.h): the
-// points run are placed; those whose size can be non-zero (the per-point cull,
-// runtime/point_cull.h) re-scaled and sized; their neighbours only placed; every other baked
+// points run are placed, re-scaled and sized; their neighbours only placed; every other baked
 // point keeps size 0.
 void lod_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
     const Asset& a = *p->asset;
     PointClusters& c = p->clusters;
     if (p->lod_sizes_clear) {
         point_clusters_clear_sizes(c, p->size.get());
-    } else {  // also the radii the cull will skip: defined (the rest pose's) until computed
+    } else {  // also the radii of points not run: defined (the rest pose's)
         std::fill(p->size.get(), p->size.get() + a.points.point_count, 0.0f);
         std::memcpy(p->radius.get(), p->rest_radius.get(), size_t(a.points.point_count) * 4);
     }
@@ -73,29 +71,12 @@ void lod_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
                                     p->point_positions.get(), p->point_normals.get(),
                                     p->size_params.eye);
     if (t) t->place += ms_since(clock);
-    // The per-point cull, relevance and size in one pass (runtime/point_cull.h; opt-in, for
-    // the benches' A/B): the run points' sizes are 0 here (cleared above), and stay so where
-    // the bound says size 0.
-    if (point_cull_mode() == PointCullMode::fused) {
-        c.stats.points_sized = point_stage_cull_relevance_size(
-            &p->pool, f, c, p->config.relevance_update, run, c.run_count);
-        if (t) t->relevance += ms_since(clock);  // the fused pass: relevance and size
-        return;
-    }
-    // With the facing list (opt-in, runtime/point_cull.h) run points facing away or behind the
-    // eye keep size 0 and skip relevance and size (c.rest is scratch until the refinement
-    // stage); by default every run point goes through the separate kernels.
-    const bool facing = point_cull_mode() == PointCullMode::facing;
-    const uint32_t* kept = facing ? c.rest.get() : run;
-    const uint32_t n =
-        facing ? point_facing_list(f, c, run, c.run_count, c.rest.get()) : c.run_count;
     if (p->config.relevance_update)
-        point_stage_relevance(&p->pool, f, kept, n);
+        point_stage_relevance(&p->pool, f, run, c.run_count);
     else
-        for (uint32_t j = 0; j < n; ++j) p->radius[kept[j]] = p->rest_radius[kept[j]];
+        for (uint32_t j = 0; j < c.run_count; ++j) p->radius[run[j]] = p->rest_radius[run[j]];
     if (t) t->relevance += ms_since(clock);
-    point_stage_size(&p->pool, f, kept, n);
-    c.stats.points_sized = n;
+    point_stage_size(&p->pool, f, run, c.run_count);
     if (t) t->size += ms_since(clock);
 }
 

@@ -51,7 +51,21 @@ int relevance_measure(const Asset& a, uint32_t i) {
     return (area ? 1 : 0) | (line ? 2 : 0);
 }
 
-// Per triangle: dominant joint (skinned) and grid cell of the bind centroid, as one key.
+// The bind face normal's dominant axis and sign (0 .. 5; 0 when degenerate): clusters facing
+// one way have narrow normal cones, so the back-face test culls whole clusters and the slope
+// bound (point_clusters_select.cpp) tightens the cut of those seen at a grazing angle.
+uint64_t normal_bucket(const MeshView& m, const uint32_t* tri) {
+    const glm::dvec3 a(glm::make_vec3(vertex(m.positions, tri[0])));
+    const glm::dvec3 b(glm::make_vec3(vertex(m.positions, tri[1])));
+    const glm::dvec3 c(glm::make_vec3(vertex(m.positions, tri[2])));
+    const glm::dvec3 n = glm::cross(b - a, c - a);
+    const glm::dvec3 size = glm::abs(n);
+    const int axis = size.x >= size.y && size.x >= size.z ? 0 : (size.y >= size.z ? 1 : 2);
+    return uint64_t(axis * 2 + (n[axis] < 0.0 ? 1 : 0));
+}
+
+// Per triangle: dominant joint (skinned), bind normal's bucket and grid cell of the bind
+// centroid, as one key.
 uint64_t triangle_key(const Asset& a, uint32_t t, const float lo[3], double cell) {
     const uint32_t* tri = a.mesh.indices + size_t(t) * 3;
     uint64_t joint = 0;
@@ -73,7 +87,7 @@ uint64_t triangle_key(const Asset& a, uint32_t t, const float lo[3], double cell
             if (sums[m] > sums[best] || (sums[m] == sums[best] && ids[m] < ids[best])) best = m;
         joint = ids[best];
     }
-    uint64_t key = joint;
+    uint64_t key = joint << 3 | normal_bucket(a.mesh, tri);
     for (int k = 0; k < 3; ++k) {
         const double centre =
             (double(vertex(a.mesh.positions, tri[0])[k]) + vertex(a.mesh.positions, tri[1])[k] +
@@ -220,12 +234,8 @@ Status cluster_bounds(PointClusters* c, const Asset& a, const float* radius,
                       const float* rest_radius) {
     const uint32_t n = a.points.point_count;
     if (!alloc(&c->bound, n) || !alloc(&c->line_bound, n) || !alloc(&c->rest_bound, n) ||
-        !alloc(&c->single_sided, c->cluster_count) || !alloc(&c->point_area_bound, n) ||
-        !alloc(&c->point_line_bound, n) || !alloc(&c->point_cluster, n) ||
-        !alloc(&c->cluster_factor, size_t(c->cluster_count) * 2))
+        !alloc(&c->single_sided, c->cluster_count))
         return make_status(StatusCode::out_of_memory, "out of memory for %u points", n);
-    std::fill(c->cluster_factor.get(), c->cluster_factor.get() + size_t(c->cluster_count) * 2,
-              0.0f);
     const PointsView& p = a.points;
     const uint8_t* double_sided = a.sides.triangle_double_sided;
     for (uint32_t k = 0; k < c->cluster_count; ++k) {
@@ -236,9 +246,6 @@ Status cluster_bounds(PointClusters* c, const Asset& a, const float* radius,
             const int measure = relevance_measure(a, i);
             if (measure & 1) bound = std::max(bound, radius[i]);
             if (measure & 2) line = std::max(line, radius[i]);
-            c->point_area_bound[i] = (measure & 1) ? radius[i] : 0.0f;
-            c->point_line_bound[i] = (measure & 2) ? radius[i] : 0.0f;
-            c->point_cluster[i] = k;
             rest = std::max(rest, rest_radius[i]);
             c->bound[j] = bound;
             c->line_bound[j] = line;

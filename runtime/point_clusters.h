@@ -12,10 +12,11 @@
 //     the points are coarse to fine within a cluster (the asset's global order, kept by a
 //     stable bucket sort), and Alg. 3.2 gives size 0 to a point whose projected region of
 //     influence is below dot area / ink. With the nearest depth in the cluster, the darkest
-//     ink the cluster's least lighting asks for, N.V <= 1 and a bound on how much Alg. 6.4's
-//     recompute can grow a radius (the largest triangle stretch where the cluster's points and
-//     their neighbours lie: area for the area measure, edges for the mean distance), every
-//     point past the cut would have had size 0.
+//     ink the cluster's least lighting asks for, a bound on N.V (the cone of the cluster's
+//     vertex normals against the directions to the eye: clusters seen at a grazing angle are
+//     cut earlier) and a bound on how much Alg. 6.4's recompute can grow a radius (the largest
+//     triangle stretch where the cluster's points and their neighbours lie: area for the area
+//     measure, edges for the mean distance), every point past the cut would have had size 0.
 // The clusters are computed deterministically from the asset at load (nothing is added to the
 // file format; the bake's spatial clusters would be the same computation, done earlier).
 // A kept point's relevance reads its relevant neighbours' positions, so they are placed too
@@ -39,9 +40,6 @@ struct LodStats {
     uint32_t cut = 0;             // clusters run only up to a prefix
     uint32_t points_run = 0;      // points placed, relevance recomputed and sized
     uint32_t points_placed = 0;   // points_run plus the neighbours they read
-    // Run points the per-point cull (runtime/point_cull.h) kept for relevance and size; set
-    // by point_stage_cull_relevance_size (0 until it runs).
-    uint32_t points_sized = 0;
 };
 
 struct PointClusters {
@@ -76,13 +74,6 @@ struct PointClusters {
     Buffer<uint32_t> forced;  // points run every frame (paintstroke roots)
     uint32_t forced_count = 0;
     Buffer<uint64_t> forced_bits;  // the same as a bit set (64 points a word)
-    // The per-point cull after place (runtime/point_cull.h): per point (asset order) its bind
-    // radius where Alg. 6.4 re-scales it by the area measure and where by the mean distance
-    // (0 where not; both near the threshold), and its cluster; per cluster,
-    // per frame, the factors the cut multiplied those radii by (its stretches, 1 on a static
-    // mesh) over the cut's 0.99 margin, 2 floats a cluster (set for every cluster not culled).
-    Buffer<float> point_area_bound, point_line_bound, cluster_factor;
-    Buffer<uint32_t> point_cluster;
     // Per cluster, per frame (scratch of the selection over the thread pool): the prefix kept
     // and what the tests decided (LodStats).
     Buffer<uint32_t> keep;
@@ -108,10 +99,11 @@ inline bool bind_area_defined(const float* gram) {
 }
 
 // Builds the clusters of `asset`'s baked points: triangles grouped by dominant joint (skinned
-// meshes) and a grid cell of their bind-pose centroid; per cluster its vertices, its reach
-// and the radius bounds. `baked_radius` holds the radii the stages use in the bake's space
-// (Pipeline::baked_radius), `rest_radius` the rest-pose radii (point_count each). Fails only
-// with out_of_memory.
+// meshes), the dominant axis of their bind normal (a cluster faces one way, so whole clusters
+// on the far side fail the back-face test) and a grid cell of their bind-pose centroid; per cluster
+// its vertices, its reach and the radius bounds. `baked_radius` holds the radii the stages use in
+// the bake's space (Pipeline::baked_radius), `rest_radius` the rest-pose radii (point_count each).
+// Fails only with out_of_memory.
 [[nodiscard]] Status point_clusters_init(PointClusters* c, const Asset& asset,
                                          const float* baked_radius, const float* rest_radius);
 

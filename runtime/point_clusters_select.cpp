@@ -67,6 +67,43 @@ bool faces_away(const PointClusters& c, uint32_t k, const Box& b, const float* n
     return true;
 }
 
+// A bound on N.V (the size rule's slope factor, §3.1.2) over cluster k's points, from the cone
+// its vertex normals span and the cone of directions from its box to the eye: a placed normal
+// blends the vertex normals with weights >= 0 (Gouraud), so it lies in their cone (axis a,
+// half-angle t, when t < 90 degrees); V lies within f of the direction from the box's centre
+// (sin f = box radius / distance). So the angle between them is at least the axis' angle to
+// that direction less t + f, and N.V at most its cosine. 1 where there is no such cone
+// or the eye is inside the box's sphere, and on clusters that are not single-sided (normals
+// turned toward the eye, or barycentric weights outside [0, 1]). Slack for the float
+// arithmetic: 1e-3.
+float slope_bound(const PointClusters& c, uint32_t k, const Box& b, const float* normals,
+                  const glm::vec3& eye) {
+    if (!c.single_sided[k]) return 1.0f;
+    glm::vec3 axis(0.0f);
+    for (uint32_t j = c.vertex_begin[k]; j < c.vertex_begin[k + 1]; ++j) {
+        const glm::vec3 n = glm::make_vec3(vertex(normals, c.vertices[j]));
+        const float len = glm::length(n);
+        if (!(len > 0.0f)) return 1.0f;
+        axis += n / len;
+    }
+    const float axis_len = glm::length(axis);
+    if (!(axis_len > 0.0f)) return 1.0f;
+    axis /= axis_len;
+    float cos_t = 1.0f;
+    for (uint32_t j = c.vertex_begin[k]; j < c.vertex_begin[k + 1]; ++j) {
+        const glm::vec3 n = glm::make_vec3(vertex(normals, c.vertices[j]));
+        cos_t = std::min(cos_t, glm::dot(axis, n) / glm::length(n));
+    }
+    const glm::vec3 centre = 0.5f * (b.lo + b.hi), to_eye = eye - centre;
+    const float radius = 0.5f * glm::length(b.hi - b.lo), distance = glm::length(to_eye);
+    if (!(cos_t > 0.0f) || !(distance > radius * 1.01f)) return 1.0f;
+    const float angle =
+        std::acos(std::max(-1.0f, std::min(1.0f, glm::dot(axis, to_eye) / distance)));
+    const float spread = std::acos(std::min(cos_t, 1.0f)) + std::asin(radius / distance);
+    const float bound = angle > spread ? std::cos(angle - spread) : 1.0f;
+    return std::min(bound + 1e-3f, 1.0f);
+}
+
 // Points of cluster k whose radius bound times `stretch` passes `threshold`: the bounds are
 // non-increasing along the cluster, so the kept points are a prefix.
 uint32_t cut_length(const PointClusters& c, uint32_t k, const float* bound, float stretch,
@@ -148,7 +185,8 @@ float least_lighting(const PointClusters& c, uint32_t k, const float* normals,
 }
 
 // Radius (object units) per unit of clip w below which the size rule gives size 0 for ink at
-// most `ink`: region r^2 (focal / w)^2 N.V <= dot area / ink, with N.V <= 1.
+// most `ink`: region r^2 (focal / w)^2 N.V <= dot area / ink, with N.V <= 1 (the caller
+// divides by the root of a tighter slope bound).
 float cut_per_w(const SizeParams& params, float focal, float ink) {
     if (!(ink > 0.0f)) return 1e30f;
     const float dot_area = 0.785398163f * params.max_point_size * params.max_point_size;
@@ -211,14 +249,11 @@ uint32_t cluster_keep(PointClusters* c, uint32_t k, const LodFrame& f, bool stre
         *kind = kKindFrustum;
         return 0;
     }
-    // The cut's radius factors, also for the per-point cull after place (runtime/point_cull.h):
-    // the same stretches over the same 0.99 margin as cut_per_w.
-    const Stretch st = stretches ? cluster_stretches(*c, k) : Stretch{1.0f, 1.0f};
-    c->cluster_factor[size_t(k) * 2] = st.area / 0.99f;
-    c->cluster_factor[size_t(k) * 2 + 1] = st.edges / 0.99f;
     if (!(w_min > 0.0f)) return total;
+    const Stretch st = stretches ? cluster_stretches(*c, k) : Stretch{1.0f, 1.0f};
     const float lit = least_lighting(*c, k, f.vertex_normals, params);
-    const float threshold = cut_per_w(params, focal, ink.at(lit)) * w_min;
+    const float slope = slope_bound(*c, k, b, f.vertex_normals, params.eye);
+    const float threshold = cut_per_w(params, focal, ink.at(lit)) * w_min / std::sqrt(slope);
     uint32_t keep;
     if (!f.relevance_update)  // the rest-pose radii as they are
         keep = cut_length(*c, k, c->rest_bound.get(), 1.0f, threshold);

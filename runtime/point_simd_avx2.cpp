@@ -10,7 +10,6 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "runtime/point_cull.h"
 #include "runtime/point_simd.h"
 
 #if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
@@ -336,95 +335,6 @@ void size_stipples_avx2(const SizeKernelFrame& f, const float* positions, const 
         const f8 size = select(hidden, zero, _mm256_mul_ps(t, splat(max_size)));
         put8(out_size, run, j, i, lanes, size);
     }
-}
-
-namespace {
-
-// stipple_size.cpp's stipple_size after its facing test for 8 radii (size_stipples_avx2's
-// operations): Alg. 3.2 with the region r^2 (focal / w)^2 N.V (§3.1.1, §3.1.2).
-inline f8 size_for_radius8(const SizeKernelFrame& f, f8 radius, f8 n_dot_v, f8 w, f8 ink,
-                           f8 hidden) {
-    const SizeParams& s = *f.params;
-    const f8 zero = _mm256_setzero_ps(), one = splat(1.0f);
-    const float max_size = s.max_point_size;
-    const f8 r_px = _mm256_div_ps(_mm256_mul_ps(radius, splat(f.focal)), w);
-    const f8 region = _mm256_mul_ps(_mm256_mul_ps(r_px, r_px), n_dot_v);
-    const f8 ratio =
-        _mm256_div_ps(ink, _mm256_div_ps(splat(0.785398163f * max_size * max_size), region));
-    f8 t = _mm256_div_ps(_mm256_sub_ps(ratio, one), splat(s.smooth_slope - 1.0f));
-    t = select(_mm256_cmp_ps(t, zero, _CMP_LT_OQ), zero,
-               select(_mm256_cmp_ps(t, one, _CMP_GT_OQ), one, t));
-    return select(hidden, zero, _mm256_mul_ps(t, splat(max_size)));
-}
-
-// point_cull.h's cull_radius_bound for 8 points: points first .. first + 7 when `run`, else
-// gathered.
-inline f8 radius_bound8(const CullKernelFrame& k, bool run, uint32_t first, i8 i) {
-    if (!k.relevance_update) return one8(k.fallback_radius, run, first, i);
-    const i8 cluster =
-        run ? _mm256_loadu_si256(reinterpret_cast<const i8*>(k.point_cluster + first))
-            : _mm256_i32gather_epi32(reinterpret_cast<const int*>(k.point_cluster), i, 4);
-    const i8 c2 = _mm256_add_epi32(cluster, cluster);
-    const f8 area = _mm256_mul_ps(one8(k.area_bound, run, first, i),
-                                  _mm256_i32gather_ps(k.cluster_factor, c2, 4));
-    const f8 line = _mm256_mul_ps(one8(k.line_bound, run, first, i),
-                                  _mm256_i32gather_ps(k.cluster_factor + 1, c2, 4));
-    return select(_mm256_cmp_ps(area, line, _CMP_LT_OQ), line, area);
-}
-
-}  // namespace
-
-// point_cull.cpp's cull_point, 8 points a step: the bound for all 8, then relevance (one point
-// at a time, relevance_radius4) and the size for the kept lanes only.
-uint32_t cull_relevance_size_avx2(const CullKernelFrame& k, const uint32_t* list, uint32_t begin,
-                                  uint32_t end) {
-    const SizeKernelFrame& f = k.sizing;
-    const SizeParams& s = *f.params;
-    const f8 zero = _mm256_setzero_ps();
-    uint32_t kept = 0;
-    for (uint32_t j = begin; j < end; j += 8) {
-        int lanes;
-        const i8 i = step_indices(list, j, end, &lanes);
-        const i8 i3 = times3(i);
-        // Coarse prefixes are runs of consecutive points: plain loads there.
-        const uint32_t first = list[j];
-        const bool run = lanes == 8 && list[j + 7] - first == 7;
-        f8 px, py, pz, nx, ny, nz;
-        xyz8(k.positions, run, first, i3, px, py, pz);
-        xyz8(k.normals, run, first, i3, nx, ny, nz);
-        const Facing8 facing = facing8(f, px, py, pz, nx, ny, nz);
-        const f8 n_dot_v = facing.n_dot_v, w = facing.w, hidden = facing.hidden;
-        const f8 ink = ink_at(f.table, lighting8(s, nx, ny, nz));
-        alignas(32) uint32_t idx[8];
-        _mm256_store_si256(reinterpret_cast<i8*>(idx), i);
-        int mask = ~_mm256_movemask_ps(hidden) & 0xFF;  // facing the eye, in front of it
-        if (k.radius_bound) {
-            const f8 bound =
-                size_for_radius8(f, radius_bound8(k, run, first, i), n_dot_v, w, ink, hidden);
-            mask = _mm256_movemask_ps(_mm256_cmp_ps(bound, zero, _CMP_NEQ_UQ));  // NaN: kept
-        }
-        for (int l = 0; l < lanes; ++l)
-            mask |= int((k.forced_bits[idx[l] >> 6] >> (idx[l] & 63)) & 1) << l;
-        mask &= (1 << lanes) - 1;
-        if (!mask) continue;
-        // The kept lanes by their bits (one loop exit to predict a step, not a branch a lane).
-        alignas(32) float r[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-        for (int m = mask; m; m &= m - 1) {
-            const int l = __builtin_ctz(unsigned(m));
-            r[l] = k.relevance_update ? relevance_radius4(*k.points, k.positions, k.scale,
-                                                          k.fallback_radius, idx[l])
-                                      : k.fallback_radius[idx[l]];
-        }
-        alignas(32) float size[8];
-        _mm256_store_ps(size, size_for_radius8(f, _mm256_load_ps(r), n_dot_v, w, ink, hidden));
-        for (int m = mask; m; m &= m - 1) {
-            const int l = __builtin_ctz(unsigned(m));
-            k.radius[idx[l]] = r[l];
-            k.size[idx[l]] = size[l];
-        }
-        kept += uint32_t(__builtin_popcount(unsigned(mask)));
-    }
-    return kept;
 }
 
 // point_clusters_select.cpp's triangle_stretch (the squared stretches of each triangle, bind
