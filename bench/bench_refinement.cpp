@@ -195,8 +195,8 @@ void BM_RefineEarlyOut(benchmark::State& state) {
                                                &f->out, nullptr);
                     } else {
                         f->out.count = 0;
-                        active = stipple::refinement_cull(&r.cull, m, m.positions, s, true,
-                                                          stipple::refinement_near_w(s));
+                        active = stipple::refinement_cull(&r.cull, m, m.positions, m.normals, s,
+                                                          true, stipple::refinement_near_w(s));
                         if (active > 0) {
                             stipple::place_listed_points(pts, m.indices, m.positions, m.normals,
                                                          r.cull.list.get(), r.cull.list_count,

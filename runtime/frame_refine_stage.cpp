@@ -47,7 +47,8 @@ void pipeline_refine_stage(Pipeline* p, bool lod, StageTimes* t, StageClock::tim
         // Only the clusters where a point can be added (runtime/refinement_cull.h): when none
         // is, the stage ends here, before any baked point is placed for it.
         RefinementCull& cull = p->refinement.cull;
-        if (refinement_cull(&cull, a.mesh, p->vertex_positions.get(), p->size_params,
+        const float* normals = a.sides.triangle_double_sided ? nullptr : p->vertex_normals.get();
+        if (refinement_cull(&cull, a.mesh, p->vertex_positions.get(), normals, p->size_params,
                             p->config.relevance_update, refinement_near_w(p->size_params)) == 0) {
             p->refined_count = 0;
             if (t) t->refine += ms_since(clock);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "runtime/normal_bounds.h"
 #include "runtime/point_clusters.h"
 #include "runtime/point_simd.h"
 
@@ -67,41 +68,13 @@ bool faces_away(const PointClusters& c, uint32_t k, const Box& b, const float* n
     return true;
 }
 
-// A bound on N.V (the size rule's slope factor, §3.1.2) over cluster k's points, from the cone
-// its vertex normals span and the cone of directions from its box to the eye: a placed normal
-// blends the vertex normals with weights >= 0 (Gouraud), so it lies in their cone (axis a,
-// half-angle t, when t < 90 degrees); V lies within f of the direction from the box's centre
-// (sin f = box radius / distance). So the angle between them is at least the axis' angle to
-// that direction less t + f, and N.V at most its cosine. 1 where there is no such cone
-// or the eye is inside the box's sphere, and on clusters that are not single-sided (normals
-// turned toward the eye, or barycentric weights outside [0, 1]). Slack for the float
-// arithmetic: 1e-3.
+// The slope bound (runtime/normal_bounds.h) of cluster k's points: 1 unless single-sided.
 float slope_bound(const PointClusters& c, uint32_t k, const Box& b, const float* normals,
                   const glm::vec3& eye) {
     if (!c.single_sided[k]) return 1.0f;
-    glm::vec3 axis(0.0f);
-    for (uint32_t j = c.vertex_begin[k]; j < c.vertex_begin[k + 1]; ++j) {
-        const glm::vec3 n = glm::make_vec3(vertex(normals, c.vertices[j]));
-        const float len = glm::length(n);
-        if (!(len > 0.0f)) return 1.0f;
-        axis += n / len;
-    }
-    const float axis_len = glm::length(axis);
-    if (!(axis_len > 0.0f)) return 1.0f;
-    axis /= axis_len;
-    float cos_t = 1.0f;
-    for (uint32_t j = c.vertex_begin[k]; j < c.vertex_begin[k + 1]; ++j) {
-        const glm::vec3 n = glm::make_vec3(vertex(normals, c.vertices[j]));
-        cos_t = std::min(cos_t, glm::dot(axis, n) / glm::length(n));
-    }
-    const glm::vec3 centre = 0.5f * (b.lo + b.hi), to_eye = eye - centre;
-    const float radius = 0.5f * glm::length(b.hi - b.lo), distance = glm::length(to_eye);
-    if (!(cos_t > 0.0f) || !(distance > radius * 1.01f)) return 1.0f;
-    const float angle =
-        std::acos(std::max(-1.0f, std::min(1.0f, glm::dot(axis, to_eye) / distance)));
-    const float spread = std::acos(std::min(cos_t, 1.0f)) + std::asin(radius / distance);
-    const float bound = angle > spread ? std::cos(angle - spread) : 1.0f;
-    return std::min(bound + 1e-3f, 1.0f);
+    const uint32_t first = c.vertex_begin[k];
+    return normal_cone_slope_bound(normals, c.vertices.get() + first, c.vertex_begin[k + 1] - first,
+                                   b.lo, b.hi, eye);
 }
 
 // Points of cluster k whose radius bound times `stretch` passes `threshold`: the bounds are
@@ -148,40 +121,13 @@ Stretch cluster_stretches(const PointClusters& c, uint32_t k) {
     return {area * kAreaMargin, edges * 1.02f};
 }
 
-// The largest ink the size rule can ask for where lighting is at least `lit` (the ink table's
-// entries from lit's step up, so whatever shape the tone curve gives the table).
-struct InkBound {
-    float from[InkTable::kSteps + 2];
-    explicit InkBound(const SizeParams& params) {
-        const InkTable table(params);
-        from[InkTable::kSteps + 1] = 0.0f;
-        for (int i = InkTable::kSteps; i >= 0; --i) from[i] = std::max(from[i + 1], table.ink[i]);
-    }
-    float at(float lit) const {
-        const int i = lit > 0.0f ? std::min(int(lit * InkTable::kSteps), InkTable::kSteps) : 0;
-        return from[i];
-    }
-};
-
-// The least lighting (runtime/stipple_size.h's lighting()) at any point of cluster k: a point's
-// normal is a blend of the vertex normals with weights >= 0, so its N.L per light is at least
-// the least N.L of the unit vertex normals (when that is >= 0). 0 for clusters with
+// The least lighting at any point of cluster k (runtime/normal_bounds.h): 0 for clusters with
 // double-sided triangles (their normals turn toward the eye).
 float least_lighting(const PointClusters& c, uint32_t k, const float* normals,
                      const SizeParams& params) {
     if (!c.single_sided[k]) return 0.0f;
-    float lit = params.ambient;
-    for (int l = 0; l < params.light_count; ++l) {
-        float least = 1.0f;
-        for (uint32_t j = c.vertex_begin[k]; j < c.vertex_begin[k + 1] && least > 0.0f; ++j) {
-            const glm::vec3 n = glm::make_vec3(vertex(normals, c.vertices[j]));
-            const float len = glm::length(n);
-            least =
-                len > 0.0f ? std::min(least, glm::dot(n, params.light_direction[l]) / len) : 0.0f;
-        }
-        lit += params.light_intensity[l] * std::max(least - 1e-4f, 0.0f);
-    }
-    return std::min(lit, 1.0f);
+    const uint32_t first = c.vertex_begin[k];
+    return least_lighting(normals, c.vertices.get() + first, c.vertex_begin[k + 1] - first, params);
 }
 
 // Radius (object units) per unit of clip w below which the size rule gives size 0 for ink at

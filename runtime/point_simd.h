@@ -1,12 +1,12 @@
 // SIMD chosen at run time for the CPU point stages (issue 9 item 5). When the CPU has AVX2
 // (cpuid, once), place (Alg. 6.3), relevance (Alg. 6.4) and size (Alg. 3.2) run the kernels of
 // runtime/point_simd_avx2.cpp (compiled for AVX2 by a target pragma, with -ffp-contract=off
-// and no FMA): size 8 points per step; place and relevance one point per step with x, y, z in
-// the lanes of a vector (8 points per step needs gathers, which measured slower than the
-// scalar loads on a Zen 4). Otherwise the baseline: the scalar code of point_placement.cpp /
-// stipple_size.cpp (SSE2 scalar on x86-64; NEON targets keep it too).
-// Each kernel does the same IEEE operations in the same order as the scalar code (no FMA, no
-// reciprocal approximations, the same NaN behaviour in comparisons and clamps), so both paths
+// and no FMA): size and relevance (its area measure) 8 points per step, each point's data
+// loaded on its own and transposed into lanes (AVX2 gathers measured slower than those loads);
+// place one point per step with x, y, z in the lanes of a vector. Otherwise the baseline: the
+// scalar code of point_placement.cpp / stipple_size.cpp (SSE2 scalar on x86-64; NEON targets keep
+// it too). Each kernel does the same IEEE operations in the same order as the scalar code (no FMA,
+// no reciprocal approximations, the same NaN behaviour in comparisons and clamps), so both paths
 // give the same bits (tests/runtime/test_point_stages.cpp checks it).
 #pragma once
 #include <cstdint>

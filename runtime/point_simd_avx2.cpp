@@ -1,5 +1,7 @@
-// AVX2 variants of the CPU point stages (runtime/point_simd.h): size 8 points per step,
-// place and relevance one point per step with x, y, z in the lanes of a vector. Each
+// AVX2 variants of the CPU point stages (runtime/point_simd.h): size and relevance 8 points
+// per step (scattered points loaded one by one and transposed: AVX2 gathers measured twice as
+// slow per element on this Zen 5), place one point per step with x, y, z in the lanes of a
+// vector. Each
 // kernel mirrors its scalar original operation by operation: same products, sums in the same
 // order, sqrt and divide (no rsqrt/rcp), the scalar code's comparisons and clamps as blends
 // with the same NaN behaviour, no FMA (the target is avx2 alone and this file is built with
@@ -29,21 +31,16 @@ namespace {
 using f8 = __m256;
 using i8 = __m256i;
 
-// The 8 point indices of a step: list[j ..] or j .., repeating the last one past `end` (those
-// lanes compute a valid point again and are not stored).
-inline i8 step_indices(const uint32_t* list, uint32_t j, uint32_t end, int* lanes) {
-    alignas(32) uint32_t idx[8];
+// The 8 point indices of a step into idx: list[j ..] or j .., repeating the last one past
+// `end` (those lanes compute a valid point again and are not stored); returns how many are
+// real.
+inline int step_indices(const uint32_t* list, uint32_t j, uint32_t end, uint32_t* idx) {
     const uint32_t n = end - j < 8u ? end - j : 8u;
     for (uint32_t k = 0; k < 8; ++k) {
         const uint32_t at = j + (k < n ? k : n - 1);
         idx[k] = list ? list[at] : at;
     }
-    *lanes = int(n);
-    return _mm256_load_si256(reinterpret_cast<const i8*>(idx));
-}
-
-inline i8 times3(i8 v) {
-    return _mm256_add_epi32(_mm256_add_epi32(v, v), v);
+    return int(n);
 }
 inline f8 splat(float x) {
     return _mm256_set1_ps(x);
@@ -53,11 +50,9 @@ inline f8 select(f8 cond, f8 a, f8 b) {
     return _mm256_blendv_ps(b, a, cond);
 }
 
-// Writes lanes 0 .. lanes - 1 of v to out[i] for each lane's index i.
-inline void store1(float* out, i8 index, int lanes, f8 v) {
-    alignas(32) uint32_t idx[8];
+// Writes lanes 0 .. lanes - 1 of v to out[idx[k]].
+inline void store1(float* out, const uint32_t* idx, int lanes, f8 v) {
     alignas(32) float vv[8];
-    _mm256_store_si256(reinterpret_cast<i8*>(idx), index);
     _mm256_store_ps(vv, v);
     for (int k = 0; k < lanes; ++k) out[idx[k]] = vv[k];
 }
@@ -83,19 +78,41 @@ inline void load_xyz8(const float* p, f8& x, f8& y, f8& z) {
     y = _mm256_set_m128(y1, y0);
     z = _mm256_set_m128(z1, z0);
 }
-// A point's x, y, z: 8 consecutive points' when `run` (j the first), else gathered.
-inline void xyz8(const float* base, bool run, uint32_t j, i8 i3, f8& x, f8& y, f8& z) {
+// x, y, z from memory, w = 0; reads exactly 3 floats. x, y as one unaligned 8-byte load
+// (_mm_loadu_si64: floats are only 4-byte aligned, and _mm_load_sd wants 8).
+inline __m128 load3(const float* p) {
+    const __m128 xy = _mm_castsi128_ps(_mm_loadu_si64(p));
+    return _mm_movelh_ps(xy, _mm_load_ss(p + 2));
+}
+// 4 loaded points (x, y, z, 0 each) to x, y, z across the lanes.
+inline void transpose3(__m128 a, __m128 b, __m128 c, __m128 d, __m128& x, __m128& y, __m128& z) {
+    const __m128 ab_xy = _mm_unpacklo_ps(a, b), cd_xy = _mm_unpacklo_ps(c, d);  // x x y y
+    const __m128 ab_z = _mm_unpackhi_ps(a, b), cd_z = _mm_unpackhi_ps(c, d);    // z z 0 0
+    x = _mm_movelh_ps(ab_xy, cd_xy);
+    y = _mm_movehl_ps(cd_xy, ab_xy);
+    z = _mm_movelh_ps(ab_z, cd_z);
+}
+// The x, y, z of points at[0 .. 8): 8 consecutive points' when `run` (j the first), else
+// loaded one by one and transposed (AVX2 gathers measured twice as slow per element here).
+inline void xyz8(const float* base, bool run, uint32_t j, const uint32_t* at, f8& x, f8& y, f8& z) {
     if (run) return load_xyz8(base + size_t(j) * 3, x, y, z);
-    x = _mm256_i32gather_ps(base, i3, 4);
-    y = _mm256_i32gather_ps(base + 1, i3, 4);
-    z = _mm256_i32gather_ps(base + 2, i3, 4);
+    __m128 x0, y0, z0, x1, y1, z1;
+    transpose3(load3(base + size_t(at[0]) * 3), load3(base + size_t(at[1]) * 3),
+               load3(base + size_t(at[2]) * 3), load3(base + size_t(at[3]) * 3), x0, y0, z0);
+    transpose3(load3(base + size_t(at[4]) * 3), load3(base + size_t(at[5]) * 3),
+               load3(base + size_t(at[6]) * 3), load3(base + size_t(at[7]) * 3), x1, y1, z1);
+    x = _mm256_set_m128(x1, x0);
+    y = _mm256_set_m128(y1, y0);
+    z = _mm256_set_m128(z1, z0);
 }
-inline f8 one8(const float* base, bool run, uint32_t j, i8 i) {
-    return run ? _mm256_loadu_ps(base + j) : _mm256_i32gather_ps(base, i, 4);
+inline f8 one8(const float* base, bool run, uint32_t j, const uint32_t* at) {
+    if (run) return _mm256_loadu_ps(base + j);
+    return _mm256_setr_ps(base[at[0]], base[at[1]], base[at[2]], base[at[3]], base[at[4]],
+                          base[at[5]], base[at[6]], base[at[7]]);
 }
-inline void put8(float* base, bool run, uint32_t j, i8 i, int lanes, f8 v) {
+inline void put8(float* base, bool run, uint32_t j, const uint32_t* idx, int lanes, f8 v) {
     if (run) return _mm256_storeu_ps(base + j, v);
-    store1(base, i, lanes, v);
+    store1(base, idx, lanes, v);
 }
 
 // x0 y0 + x1 y1 + x2 y2, left to right (glm::dot on vec3).
@@ -108,12 +125,6 @@ inline f8 dot3(f8 x0, f8 x1, f8 x2, f8 y0, f8 y1, f8 y2) {
 
 namespace {
 
-// x, y, z from memory, w = 0; reads exactly 3 floats. x, y as one unaligned 8-byte load
-// (_mm_loadu_si64: floats are only 4-byte aligned, and _mm_load_sd wants 8).
-inline __m128 load3(const float* p) {
-    const __m128 xy = _mm_castsi128_ps(_mm_loadu_si64(p));
-    return _mm_movelh_ps(xy, _mm_load_ss(p + 2));
-}
 inline float lane0(__m128 v) {
     return _mm_cvtss_f32(v);
 }
@@ -127,8 +138,7 @@ inline float sqrt1(float x) {
 
 // One point's relevance radius, x, y, z in the lanes of one vector: the neighbour moment's
 // sums xx, yy, zz in one accumulator and xy, yz, zx in another, each in the scalar order.
-// (Gathering 8 points' neighbours at a time was slower than this on a Zen 4: its AVX2 gathers
-// cost more than the loads they replace.)
+// For the points relevance_area8 (8 at a time) does not take: the mean distance, the fallback.
 inline float relevance_radius4(const PointsView& points, const float* positions, const float* scale,
                                const float* fallback_radius, uint32_t i) {
     const float k = scale[i];
@@ -157,6 +167,50 @@ inline float relevance_radius4(const PointsView& points, const float* positions,
         return -k * (sum / float(end - begin));
     }
     return fallback_radius[i];
+}
+
+// Alg. 6.4's area measure for the 8 points i[0 .. 8) at once, each point's neighbours in its
+// lane: the moment's six sums in neighbour order per lane (point_placement.cpp's
+// neighbour_moment), lanes past a point's last neighbour adding d = p - p = +0 (a sum that
+// starts at +0 never becomes -0, so adding +0 leaves its bits), then k I2^(1/4). Returns
+// false (writing nothing) when a real lane's scale is not > 0 (the mean distance or the
+// fallback radius: the caller takes those points one by one).
+inline bool relevance_area8(const PointsView& points, const float* positions, const float* scale,
+                            const uint32_t* i, int lanes, float* out_radius) {
+    uint32_t first[8], count[8], most = 0;
+    alignas(32) float k[8];
+    for (int l = 0; l < 8; ++l) {
+        k[l] = scale[i[l]];
+        if (!(k[l] > 0.0f)) return false;  // the repeated lanes repeat a real one
+        first[l] = points.neighbour_offsets[i[l]];
+        count[l] = points.neighbour_offsets[i[l] + 1] - first[l];
+        most = count[l] > most ? count[l] : most;
+    }
+    f8 px, py, pz;
+    xyz8(positions, false, 0, i, px, py, pz);
+    f8 xx = _mm256_setzero_ps(), yy = xx, zz = xx, xy = xx, xz = xx, yz = xx;
+    for (uint32_t n = 0; n < most; ++n) {
+        uint32_t at[8];
+        for (int l = 0; l < 8; ++l) at[l] = n < count[l] ? points.neighbours[first[l] + n] : i[l];
+        f8 qx, qy, qz;
+        xyz8(positions, false, 0, at, qx, qy, qz);
+        const f8 dx = _mm256_sub_ps(qx, px), dy = _mm256_sub_ps(qy, py), dz = _mm256_sub_ps(qz, pz);
+        xx = _mm256_add_ps(xx, _mm256_mul_ps(dx, dx));
+        yy = _mm256_add_ps(yy, _mm256_mul_ps(dy, dy));
+        zz = _mm256_add_ps(zz, _mm256_mul_ps(dz, dz));
+        xy = _mm256_add_ps(xy, _mm256_mul_ps(dx, dy));
+        xz = _mm256_add_ps(xz, _mm256_mul_ps(dx, dz));
+        yz = _mm256_add_ps(yz, _mm256_mul_ps(dy, dz));
+    }
+    const f8 i2 =
+        _mm256_add_ps(_mm256_add_ps(_mm256_sub_ps(_mm256_mul_ps(xx, yy), _mm256_mul_ps(xy, xy)),
+                                    _mm256_sub_ps(_mm256_mul_ps(xx, zz), _mm256_mul_ps(xz, xz))),
+                      _mm256_sub_ps(_mm256_mul_ps(yy, zz), _mm256_mul_ps(yz, yz)));
+    const f8 kept = select(_mm256_cmp_ps(i2, _mm256_setzero_ps(), _CMP_LT_OQ), _mm256_setzero_ps(),
+                           i2);  // std::max(i2, 0)
+    const f8 r = _mm256_mul_ps(_mm256_load_ps(k), _mm256_sqrt_ps(_mm256_sqrt_ps(kept)));
+    store1(out_radius, i, lanes, r);
+    return true;
 }
 
 }  // namespace
@@ -243,14 +297,14 @@ void recompute_relevance_avx2(const PointsView& points, const float* point_posit
                               const float* scale, const float* fallback_radius,
                               const uint32_t* list, uint32_t begin, uint32_t end,
                               float* out_radius) {
-    if (list) {
-        for (uint32_t j = begin; j < end; ++j)
-            out_radius[list[j]] =
-                relevance_radius4(points, point_positions, scale, fallback_radius, list[j]);
-        return;
+    for (uint32_t j = begin; j < end; j += 8) {
+        uint32_t i[8];
+        const int lanes = step_indices(list, j, end, i);
+        if (!relevance_area8(points, point_positions, scale, i, lanes, out_radius))
+            for (int l = 0; l < lanes; ++l)  // a lane without the area measure: one by one
+                out_radius[i[l]] =
+                    relevance_radius4(points, point_positions, scale, fallback_radius, i[l]);
     }
-    for (uint32_t i = begin; i < end; ++i)
-        out_radius[i] = relevance_radius4(points, point_positions, scale, fallback_radius, i);
 }
 
 namespace {
@@ -315,13 +369,12 @@ void size_stipples_avx2(const SizeKernelFrame& f, const float* positions, const 
     const f8 dot_area = splat(0.785398163f * max_size * max_size);
     const f8 slope = splat(s.smooth_slope - 1.0f);
     for (uint32_t j = begin; j < end; j += 8) {
-        int lanes;
-        const i8 i = step_indices(list, j, end, &lanes);
+        uint32_t i[8];
+        const int lanes = step_indices(list, j, end, i);
         const bool run = !list && lanes == 8;
-        const i8 i3 = times3(i);
         f8 px, py, pz, nx, ny, nz;
-        xyz8(positions, run, j, i3, px, py, pz);
-        xyz8(normals, run, j, i3, nx, ny, nz);
+        xyz8(positions, run, j, i, px, py, pz);
+        xyz8(normals, run, j, i, nx, ny, nz);
         const Facing8 facing = facing8(f, px, py, pz, nx, ny, nz);
         const f8 n_dot_v = facing.n_dot_v, w = facing.w, hidden = facing.hidden;
         const f8 r_px = _mm256_div_ps(_mm256_mul_ps(one8(radius, run, j, i), splat(f.focal)), w);

@@ -5,6 +5,8 @@
 #include <cstring>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "runtime/normal_bounds.h"
+
 namespace stipple {
 
 namespace {
@@ -399,9 +401,8 @@ Status refinement_cull_init(RefinementCull* c, const MeshView& domain, const Mes
         const uint32_t* tri = host.indices + size_t(t) * 3;
         const glm::vec3 a = vertex(host, tri[0]);
         const glm::vec3 e1 = vertex(host, tri[1]) - a, e2 = vertex(host, tri[2]) - a;
-        c->bind_gram[size_t(t) * 3] = glm::dot(e1, e1);
-        c->bind_gram[size_t(t) * 3 + 1] = glm::dot(e1, e2);
-        c->bind_gram[size_t(t) * 3 + 2] = glm::dot(e2, e2);
+        float* gram = c->bind_gram.get() + size_t(t) * 3;
+        gram[0] = glm::dot(e1, e1), gram[1] = glm::dot(e1, e2), gram[2] = glm::dot(e2, e2);
     }
     std::fill(c->stamp.get(), c->stamp.get() + points.point_count / 64 + 1, uint64_t(0));
     std::fill(c->sigma_frame.get(), c->sigma_frame.get() + host.triangle_count, 0u);
@@ -522,18 +523,17 @@ bool box_outside(const glm::mat4& m, const glm::vec3& lo, const glm::vec3& hi, f
 }  // namespace
 
 uint32_t refinement_cull(RefinementCull* c, const MeshView& host, const float* posed,
-                         const SizeParams& params, bool stretch, float near_w) {
+                         const float* posed_normals, const SizeParams& params, bool stretch,
+                         float near_w) {
     c->active_count = c->list_count = 0;
     if (++c->frame == 0) {  // the stamps wrapped: none is current
         std::fill(c->sigma_frame.get(), c->sigma_frame.get() + host.triangle_count, 0u);
         c->frame = 1;
     }
-    const InkTable ink(params);
-    float ink_max = 0.0f;
-    for (float v : ink.ink) ink_max = std::max(ink_max, v);
+    const InkBound ink(params);  // need <= N.V ink <= ink.at(0), the table's largest
     const float focal = focal_pixels(params);
     const float dot_area = 0.785398163f * params.max_point_size * params.max_point_size;
-    const float scale = (1.0f + kSlack) * ink_max * focal * focal / dot_area;
+    const float scale = (1.0f + kSlack) * focal * focal / dot_area;
     // Paths cross seams: each crossing can add the largest gap between welded vertices'
     // posed positions (a path crosses at most kSpanPerEdge edges).
     float gap = 0.0f;
@@ -562,7 +562,12 @@ uint32_t refinement_cull(RefinementCull* c, const MeshView& host, const float* p
             if (finite && box_outside(params.view_projection, lo, hi, &w_min)) continue;
             if (finite) {
                 const float w = std::max(w_min, near_w);
-                const float density = scale / (w * w);
+                const uint32_t h = c->host_begin[k], hn = c->host_begin[k + 1] - h;
+                const float need = posed_normals
+                                       ? need_bound(posed_normals, c->host_vertex.get() + h, hn, lo,
+                                                    hi, params, ink)
+                                       : ink.at(0.0f);
+                const float density = scale * need / (w * w);
                 if (!stretch && density < lower) continue;
                 if (stretch && lower > 0.0f && gap < INFINITY) {  // 0: an edge without a path
                     float l2 = 0.0f;
@@ -572,8 +577,7 @@ uint32_t refinement_cull(RefinementCull* c, const MeshView& host, const float* p
                     const float l = std::sqrt(l2) + gap / c->min_path[k];
                     if (density * l * l < lower) continue;
                 }
-                // Second chance: the affine map nearest the cluster's hosts, and how far they
-                // are from it.
+                // Second chance: the affine map nearest the hosts, and how far they are from it.
                 if (stretch && density * affine_ratio(*c, host, posed, k) < 1.0f) continue;
             }
         }
@@ -583,9 +587,7 @@ uint32_t refinement_cull(RefinementCull* c, const MeshView& host, const float* p
             const uint32_t i = c->corner[j];
             uint64_t& word = c->stamp[i / 64];
             const uint64_t bit = uint64_t(1) << (i % 64);
-            if (word & bit) continue;
-            word |= bit;
-            c->list[c->list_count++] = i;
+            if (!(word & bit)) word |= bit, c->list[c->list_count++] = i;  // each corner once
         }
     }
     for (uint32_t j = 0; j < c->list_count; ++j) c->stamp[c->list[j] / 64] = 0;

@@ -10,7 +10,8 @@
 // Per cluster and frame, each factor gets an upper bound from the posed render mesh alone:
 //   - a baked point lies in its host triangle (barycentric), so the cluster's corners lie in
 //     the box of its hosts' posed vertices: frustum planes and the nearest w from that box;
-//   - need <= N.V * ink <= the largest ink of the frame's ink table;
+//   - need <= N.V * ink <= the N.V and ink bounds of the hosts' vertex normals (a corner's
+//     normal blends its host's: runtime/normal_bounds.h), or the frame's largest ink;
 //   - stretch: the posed map is affine on each render triangle, so a segment inside one
 //     stretches at most by its largest singular value sigma (per frame, from the bind and
 //     posed Gram matrices). Each edge of a domain triangle is bounded at load by a path
@@ -78,7 +79,10 @@ struct RefinementCull {
 // Per frame: marks the clusters where refine_points could add a point (`posed`: the render
 // mesh's posed vertices, 3 floats each; `stretch` as refine_points'), lists their corners
 // into c->list and returns how many clusters are active. near_w: refinement_near_w(params).
+// posed_normals (the posed vertex normals; null where the mesh has double-sided triangles, or
+// to leave it out) bounds need_t by the hosts' normals (runtime/normal_bounds.h).
 uint32_t refinement_cull(RefinementCull* c, const MeshView& host, const float* posed,
-                         const SizeParams& params, bool stretch, float near_w);
+                         const float* posed_normals, const SizeParams& params, bool stretch,
+                         float near_w);
 
 }  // namespace stipple

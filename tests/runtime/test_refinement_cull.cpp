@@ -118,9 +118,10 @@ void RefinementCull::check_exact(const stipple::Asset& asset, int cases, int min
         Extra full(config.refinement_budget), culled(config.refinement_budget);
         stipple::refine_points(&r, domain, domain.positions, domain.normals, nullptr, p.size_params,
                                stretch, &full.out, &full.stats);
-        const uint32_t active =
-            stipple::refinement_cull(&r.cull, asset.mesh, p.vertex_positions.get(), p.size_params,
-                                     stretch, stipple::refinement_near_w(p.size_params));
+        const uint32_t active = stipple::refinement_cull(
+            &r.cull, asset.mesh, p.vertex_positions.get(),
+            asset.sides.triangle_double_sided ? nullptr : p.vertex_normals.get(), p.size_params,
+            stretch, stipple::refinement_near_w(p.size_params));
         if (active == 0) {
             EXPECT_EQ(full.out.count, 0u) << "case " << k << ": every cluster skipped";
             EXPECT_EQ(full.stats.wanted, 0u) << "case " << k;
