@@ -139,11 +139,6 @@ void recompute_relevance_range(const PointsView& points, const float* point_posi
         out_radius[i] = relevance_radius(points, point_positions, scale, fallback_radius, i);
 }
 
-float point_relevance_radius(const PointsView& points, const float* point_positions,
-                             const float* scale, const float* fallback_radius, uint32_t i) {
-    return relevance_radius(points, point_positions, scale, fallback_radius, i);
-}
-
 void recompute_listed_relevance(const PointsView& points, const float* point_positions,
                                 const float* scale, const float* fallback_radius,
                                 const uint32_t* list, uint32_t list_count, float* out_radius) {

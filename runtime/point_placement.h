@@ -44,11 +44,6 @@ void recompute_relevance_range(const PointsView& points, const float* point_posi
                                const float* scale, const float* fallback_radius, uint32_t begin,
                                uint32_t end, float* out_radius);
 
-// recompute_relevance's radius of point i alone (the fused cull / relevance / size pass,
-// runtime/point_cull.h); its relevant neighbours must have been placed this frame.
-float point_relevance_radius(const PointsView& points, const float* point_positions,
-                             const float* scale, const float* fallback_radius, uint32_t i);
-
 // recompute_relevance for the points list[0 .. list_count) only; their relevant neighbours
 // must have been placed this frame.
 void recompute_listed_relevance(const PointsView& points, const float* point_positions,

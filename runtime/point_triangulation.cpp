@@ -179,10 +179,11 @@ Status triangulate_points(uint32_t count, const float* positions, const float* n
         // The nearest same-sheet neighbours within reach, along the surface.
         if (along.mesh) along.mark(i, host_triangle[i], p, reach);
         int found = 0;
-        grid.near(p, reach, [&](uint32_t j) {
+        grid.near_slots(p, reach, [&](uint32_t slot) {
+            const uint32_t j = grid.items[slot];
             if (j == i) return;
             if (along.mesh && along.stamp[host_triangle[j]] != i) return;  // another part
-            const glm::vec3 d = grid.point(j) - p;
+            const glm::vec3 d = grid.slot_point(slot) - p;
             const float d2 = glm::dot(d, d);
             if (!(d2 > 0.0f) || d2 > reach * reach) return;
             const glm::vec3 nj(normals[j * 3], normals[j * 3 + 1], normals[j * 3 + 2]);

@@ -132,6 +132,19 @@ uint32_t triangle_chain(const MeshView& m, const Adjacency& adj, uint32_t hx, ui
     return 0;
 }
 
+// The t in [0, 1] that minimises |p - u| + |w - p| for p = a + t (b - a): unfold u and w
+// about the edge's line into one plane, on opposite sides, and cross the line where the
+// straight segment between them does (the sum is convex in t, so clamping keeps the least).
+float best_crossing(glm::vec3 a, glm::vec3 b, glm::vec3 u, glm::vec3 w) {
+    const glm::vec3 d = b - a;
+    const float len2 = glm::dot(d, d);
+    if (!(len2 > 0.0f)) return 0.0f;
+    const float tu = glm::dot(u - a, d) / len2, tw = glm::dot(w - a, d) / len2;
+    const float ru = glm::length(u - a - tu * d), rw = glm::length(w - a - tw * d);
+    const float t = ru + rw > 0.0f ? tu + (tw - tu) * ru / (ru + rw) : 0.5f * (tu + tw);
+    return std::clamp(t, 0.0f, 1.0f);
+}
+
 // An upper bound on the bind length of a path on the render mesh from x (in triangle hx) to y
 // (in hy): straight inside each triangle of the shortest chain between them, crossing each
 // shared edge where coordinate descent puts it (any crossing gives a path, so any is an upper
@@ -172,21 +185,10 @@ float path_bound(const MeshView& m, const Adjacency& adj, glm::vec3 x, uint32_t 
     for (int sweep = 0; sweep < 12; ++sweep) {
         bool moved = false;
         for (uint32_t i = 1; i < n; ++i) {
-            auto length = [&](float t) {
-                const glm::vec3 p = a[i] + t * (b[i] - a[i]);
-                return glm::length(p - q[i - 1]) + glm::length(q[i + 1] - p);
-            };
-            float lo = 0.0f, hi = 1.0f;
-            for (int it = 0; it < 24; ++it) {
-                const float m1 = lo + (hi - lo) / 3.0f, m2 = hi - (hi - lo) / 3.0f;
-                if (length(m1) < length(m2))
-                    hi = m2;
-                else
-                    lo = m1;
-            }
-            moved = moved || std::fabs(0.5f * (lo + hi) - s[i]) > 1e-4f;
-            s[i] = 0.5f * (lo + hi);
-            q[i] = a[i] + s[i] * (b[i] - a[i]);
+            const float t = best_crossing(a[i], b[i], q[i - 1], q[i + 1]);
+            moved = moved || std::fabs(t - s[i]) > 1e-4f;
+            s[i] = t;
+            q[i] = a[i] + t * (b[i] - a[i]);
         }
         if (!moved) break;
     }

@@ -13,46 +13,46 @@ namespace stipple {
 
 namespace {
 
-glm::vec3 point3(const float* p, uint32_t i) {
-    return glm::vec3(p[i * 3], p[i * 3 + 1], p[i * 3 + 2]);
-}
-
-// Max-heap of triangles keyed by dist, with decrease-key.
+// Max-heap of slots keyed by dist (ties: the smaller triangle index first), with
+// decrease-key. The order it pops is fixed by (key, index) alone.
 struct Heap {
     uint32_t size = 0;
-    Buffer<uint32_t> item, slot;  // slot[t] = position of t, or ~0u
+    Buffer<uint32_t> item, slot;  // slot[k] = position of k, or ~0u
     const float* key = nullptr;
+    const uint32_t* index = nullptr;
 
+    bool before(uint32_t a, uint32_t b) const {
+        return key[a] > key[b] || (key[a] == key[b] && index[a] < index[b]);
+    }
     void swap(uint32_t a, uint32_t b) {
         std::swap(item[a], item[b]);
         slot[item[a]] = a;
         slot[item[b]] = b;
     }
     void up(uint32_t i) {
-        while (i > 0 && key[item[(i - 1) / 2]] < key[item[i]])
-            swap(i, (i - 1) / 2), i = (i - 1) / 2;
+        while (i > 0 && before(item[i], item[(i - 1) / 2])) swap(i, (i - 1) / 2), i = (i - 1) / 2;
     }
     void down(uint32_t i) {
         for (;;) {
             uint32_t l = 2 * i + 1, r = l + 1, m = i;
-            if (l < size && key[item[l]] > key[item[m]]) m = l;
-            if (r < size && key[item[r]] > key[item[m]]) m = r;
+            if (l < size && before(item[l], item[m])) m = l;
+            if (r < size && before(item[r], item[m])) m = r;
             if (m == i) return;
             swap(i, m);
             i = m;
         }
     }
-    void push(uint32_t t) {
-        item[size] = t;
-        slot[t] = size;
+    void push(uint32_t k) {
+        item[size] = k;
+        slot[k] = size;
         up(size++);
     }
     uint32_t pop() {
-        const uint32_t t = item[0];
+        const uint32_t k = item[0];
         swap(0, --size);
-        slot[t] = ~0u;
+        slot[k] = ~0u;
         down(0);
-        return t;
+        return k;
     }
 };
 
@@ -71,32 +71,35 @@ bool first_point_phases(uint32_t triangle_count, const float* first_points, cons
         const float spacing = float(std::sqrt(total_area / double(baked_count + n)));
         const float reach = 3.0f * spacing;
         SpatialGrid baked_grid, tri_grid;
-        Buffer<float> dist = make_buffer<float>(n);
-        Heap heap;
-        heap.item = make_buffer<uint32_t>(n);
-        heap.slot = make_buffer<uint32_t>(n);
-        heap.key = dist.get();
-        if (!dist || !heap.item || !heap.slot ||
-            !baked_grid.build(baked, baked_count, reach, nullptr) ||
+        if (!baked_grid.build(baked, baked_count, reach, nullptr) ||
             !tri_grid.build(first_points, n, 1.5f * spacing, area))
             return false;
-        for (uint32_t t = 0; t < n; ++t) {
-            heap.slot[t] = ~0u;
-            dist[t] = reach;
-            if (!(area[t] > 0.0f)) continue;
-            const glm::vec3 p = point3(first_points, t);
-            float& d = dist[t];
-            baked_grid.near(
-                p, reach, [&](uint32_t i) { d = std::min(d, glm::length(point3(baked, i) - p)); });
-            heap.push(t);
+        // Worked in the triangle grid's slots (the triangles with area, those of a cell
+        // together), so what one step touches lies close in memory.
+        const uint32_t m = tri_grid.start[size_t(tri_grid.mask) + 1];
+        Buffer<float> dist = make_buffer<float>(m);
+        Heap heap;
+        heap.item = make_buffer<uint32_t>(m);
+        heap.slot = make_buffer<uint32_t>(m);
+        heap.key = dist.get();
+        heap.index = tri_grid.items.get();
+        if (!dist || !heap.item || !heap.slot) return false;
+        for (uint32_t k = 0; k < m; ++k) {
+            const glm::vec3 p = tri_grid.slot_point(k);
+            float d = reach;
+            baked_grid.near_slots(p, reach, [&](uint32_t j) {
+                d = std::min(d, glm::length(baked_grid.slot_point(j) - p));
+            });
+            dist[k] = d;
+            heap.push(k);
         }
         while (heap.size > 0) {
-            const uint32_t t = heap.pop();
-            phase[t] = (float(rank++) + 0.5f) / float(n);
-            const glm::vec3 p = point3(first_points, t);
-            tri_grid.near(p, dist[t], [&](uint32_t u) {
+            const uint32_t k = heap.pop();
+            phase[tri_grid.items[k]] = (float(rank++) + 0.5f) / float(n);
+            const glm::vec3 p = tri_grid.slot_point(k);
+            tri_grid.near_slots(p, dist[k], [&](uint32_t u) {
                 if (heap.slot[u] == ~0u) return;  // ranked already
-                const float d = glm::length(point3(first_points, u) - p);
+                const float d = glm::length(tri_grid.slot_point(u) - p);
                 if (d < dist[u]) {
                     dist[u] = d;
                     heap.down(heap.slot[u]);

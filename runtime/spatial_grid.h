@@ -15,7 +15,9 @@ struct SpatialGrid {
     float cell = 1.0f;
     uint32_t mask = 0;              // bucket count - 1
     Buffer<uint32_t> start;         // bucket -> first slot, bucket count + 1
-    Buffer<uint32_t> items;         // point indices sorted by bucket
+    Buffer<uint32_t> items;         // slot -> point index, sorted by bucket
+    Buffer<float> slot_points;      // slot -> its point's 3 floats (a copy, bucket order)
+    Buffer<int32_t> slot_cells;     // slot -> its point's cell (3 coordinates)
     const float* points = nullptr;  // 3 floats per point
 
     // Cell coordinates saturate at +-2^30 (NaN: 0): a far point or a tiny cell must not
@@ -37,13 +39,22 @@ struct SpatialGrid {
     glm::vec3 point(uint32_t i) const {
         return glm::vec3(points[i * 3], points[i * 3 + 1], points[i * 3 + 2]);
     }
+    glm::vec3 slot_point(uint32_t k) const {
+        const float* q = slot_points.get() + size_t(k) * 3;
+        return glm::vec3(q[0], q[1], q[2]);
+    }
+    bool slot_in(uint32_t k, const glm::ivec3& c) const {
+        const int32_t* q = slot_cells.get() + size_t(k) * 3;
+        return q[0] == c.x && q[1] == c.y && q[2] == c.z;
+    }
 
     // Indexes the points i < n with use[i] > 0 (all if use is null). False if out of memory.
     [[nodiscard]] bool build(const float* p, uint32_t n, float cell_size, const float* use);
 
-    // Calls f(index) for the points in the cells overlapping the cube of half-size r at p.
+    // Calls f(slot) for the points in the cells overlapping the cube of half-size r at p
+    // (items[slot] is the point's index, slot_point(slot) its position: contiguous per cell).
     template <typename F>
-    void near(const glm::vec3& p, float r, F f) const {
+    void near_slots(const glm::vec3& p, float r, F f) const {
         const glm::ivec3 lo = at(p - glm::vec3(r)), hi = at(p + glm::vec3(r));
         for (int z = lo.z; z <= hi.z; ++z)
             for (int y = lo.y; y <= hi.y; ++y)
@@ -51,8 +62,13 @@ struct SpatialGrid {
                     const glm::ivec3 c(x, y, z);
                     const uint32_t b = bucket(c);
                     for (uint32_t k = start[b]; k < start[b + 1]; ++k)
-                        if (at(point(items[k])) == c) f(items[k]);
+                        if (slot_in(k, c)) f(k);
                 }
+    }
+    // Calls f(index) for the same points.
+    template <typename F>
+    void near(const glm::vec3& p, float r, F f) const {
+        near_slots(p, r, [&](uint32_t k) { f(items[k]); });
     }
 };
 
