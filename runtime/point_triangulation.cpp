@@ -165,12 +165,19 @@ Status triangulate_points(uint32_t count, const float* positions, const float* n
     const float reach = 2.2f * spacing;
     SpatialGrid grid;
     const size_t capacity = size_t(count) * 3;
+    // The points are taken cell by cell (the grid's slots), so one point's neighbours and
+    // hosts are still in cache for the next; the triangles are put in point order after.
     Buffer<uint32_t> tris = make_buffer<uint32_t>(capacity * 3);
-    if (!tris || !grid.build(positions, count, reach, nullptr)) return out_of_memory(count);
+    Buffer<uint32_t> raw = make_buffer<uint32_t>(capacity * 3);
+    Buffer<uint32_t> first = make_buffer<uint32_t>(size_t(count) + 1);
+    if (!tris || !raw || !first || !grid.build(positions, count, reach, nullptr))
+        return out_of_memory(count);
+    std::fill(first.get(), first.get() + count + 1, 0u);
     uint32_t made = 0;
     Candidate candidates[kMaxCandidates];
-    for (uint32_t i = 0; i < count && made < capacity; ++i) {
-        const glm::vec3 p = grid.point(i);
+    for (uint32_t slot_i = 0; slot_i < count && made < capacity; ++slot_i) {
+        const uint32_t i = grid.items[slot_i];
+        const glm::vec3 p = grid.slot_point(slot_i);
         const glm::vec3 n(normals[i * 3], normals[i * 3 + 1], normals[i * 3 + 2]);
         if (!(glm::dot(n, n) > 0.5f)) continue;
         // Tangent frame (e1, e2, n), right-handed: counter-clockwise about n.
@@ -215,11 +222,19 @@ Status triangulate_points(uint32_t count, const float* positions, const float* n
             if (a < 0 || b < 0 || a == b) continue;
             const uint32_t j = candidates[a].index, k = candidates[b].index;
             if (i > j || i > k) continue;
-            tris[size_t(made) * 3] = i;
-            tris[size_t(made) * 3 + 1] = j;
-            tris[size_t(made) * 3 + 2] = k;
+            raw[size_t(made) * 3] = i;
+            raw[size_t(made) * 3 + 1] = j;
+            raw[size_t(made) * 3 + 2] = k;
+            ++first[i + 1];
             ++made;
         }
+    }
+    // Counting sort by first corner (stable: a point's triangles keep their order).
+    for (uint32_t i = 0; i < count; ++i) first[i + 1] += first[i];
+    for (uint32_t t = 0; t < made; ++t) {
+        const uint32_t at = first[raw[size_t(t) * 3]]++;
+        std::copy(raw.get() + size_t(t) * 3, raw.get() + size_t(t) * 3 + 3,
+                  tris.get() + size_t(at) * 3);
     }
     out->triangle_count = made;
     out->indices = std::move(tris);
