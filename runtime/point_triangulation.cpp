@@ -136,6 +136,17 @@ Status out_of_memory(uint32_t count) {
     return make_status(StatusCode::out_of_memory, "out of memory triangulating %u points", count);
 }
 
+// Copies the `made` triangles of raw into out sorted by first corner (counting sort, stable:
+// a point's triangles keep their order); first[i + 1] holds point i's count, first[0] 0.
+void in_point_order(const uint32_t* raw, uint32_t made, uint32_t count, uint32_t* first,
+                    uint32_t* out) {
+    for (uint32_t i = 0; i < count; ++i) first[i + 1] += first[i];
+    for (uint32_t t = 0; t < made; ++t) {
+        const uint32_t at = first[raw[size_t(t) * 3]]++;
+        std::copy(raw + size_t(t) * 3, raw + size_t(t) * 3 + 3, out + size_t(at) * 3);
+    }
+}
+
 }  // namespace
 
 double surface_area(const MeshView& m) {
@@ -229,13 +240,7 @@ Status triangulate_points(uint32_t count, const float* positions, const float* n
             ++made;
         }
     }
-    // Counting sort by first corner (stable: a point's triangles keep their order).
-    for (uint32_t i = 0; i < count; ++i) first[i + 1] += first[i];
-    for (uint32_t t = 0; t < made; ++t) {
-        const uint32_t at = first[raw[size_t(t) * 3]]++;
-        std::copy(raw.get() + size_t(t) * 3, raw.get() + size_t(t) * 3 + 3,
-                  tris.get() + size_t(at) * 3);
-    }
+    in_point_order(raw.get(), made, count, first.get(), tris.get());
     out->triangle_count = made;
     out->indices = std::move(tris);
     return {};

@@ -34,6 +34,11 @@ namespace stipple {
 
 struct ThreadPool;
 
+// A domain edge's bind path crosses at most this many render triangles.
+constexpr uint32_t kCullSpanPerEdge = 6;
+// Relative slack on every bound against the full stage's float rounding.
+constexpr float kCullSlack = 1e-3f;
+
 struct RefinementCull {
     uint32_t cluster_count = 0;                // 0: no culling (mesh domain, or no host mesh given)
     uint32_t point_count = 0;                  // domain vertices (baked points)
