@@ -27,7 +27,29 @@ set(_stipple_costs
   ParticleAllocation.ParticleFramesAllocateNothingAfterInit 11
   ThreadAllocation.FramesOnThreeThreadsAllocateNothing 9
   PointStagesTest.ThreadsGiveByteIdenticalPointsOnTheWalk 9
-  Styles.EachStyleIsItsOwnDeterministicFrame 8)
+  Styles.EachStyleIsItsOwnDeterministicFrame 8
+  # The sanitizer build's shards (tests/CMakeLists.txt: one process per shard), longest first
+  # so that no long shard runs alone at the end.
+  stipple_frame_tests.shard2 86
+  stipple_frame_tests.shard6 73
+  stipple_frame_tests.shard7 67
+  stipple_frame_tests.shard1 66
+  stipple_frame_tests.shard5 66
+  stipple_frame_tests.shard4 64
+  stipple_frame_tests.shard3 58
+  stipple_frame_tests.shard0 57
+  stipple_alloc_tests.shard1 49
+  stipple_tools_tests.shard2 48
+  stipple_alloc_tests.shard0 44
+  stipple_runtime_tests.shard2 38
+  stipple_runtime_tests.shard0 37
+  stipple_bake_tests.shard1 35
+  stipple_runtime_tests.shard1 29
+  stipple_runtime_tests.shard3 29
+  stipple_tools_tests.shard0 28
+  stipple_tools_tests.shard3 27
+  stipple_bake_tests.shard0 23
+  stipple_tools_tests.shard1 12)
 list(LENGTH _stipple_costs _n)
 math(EXPR _last "${_n} - 1")
 foreach(_i RANGE 0 ${_last} 2)
