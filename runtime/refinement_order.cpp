@@ -71,8 +71,11 @@ bool first_point_phases(uint32_t triangle_count, const float* first_points, cons
         const float spacing = float(std::sqrt(total_area / double(baked_count + n)));
         const float reach = 3.0f * spacing;
         SpatialGrid baked_grid, tri_grid;
-        if (!baked_grid.build(baked, baked_count, reach, nullptr) ||
-            !tri_grid.build(first_points, n, 1.5f * spacing, area))
+        // Any cell sizes give the same ranks: a query visits every cell its cube overlaps, and
+        // a point outside the cube is farther than any distance it could lower. These sizes
+        // visit the fewest cells for the points they test (refinement_init -20% at 100k).
+        if (!baked_grid.build(baked, baked_count, 2.0f * reach, nullptr) ||
+            !tri_grid.build(first_points, n, 3.0f * spacing, area))
             return false;
         // Worked in the triangle grid's slots (the triangles with area, those of a cell
         // together), so what one step touches lies close in memory.
