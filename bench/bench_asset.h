@@ -10,8 +10,8 @@
 
 namespace stipple::bench {
 
-// assets/<relative> baked to `points` points; false if anything fails.
-inline bool bake_asset(const char* relative, uint32_t points, Asset* out) {
+// The bytes of assets/<relative> baked to `points` points; false if anything fails.
+inline bool bake_bytes(const char* relative, uint32_t points, std::vector<uint8_t>* bytes) {
     bake::RawScene scene;
     if (!bake::import_scene(std::string(STIPPLE_SOURCE_DIR) + "/assets/" + relative, &scene).ok())
         return false;
@@ -19,8 +19,15 @@ inline bool bake_asset(const char* relative, uint32_t points, Asset* out) {
     config.point_count = points;
     bake::PointHierarchy hierarchy;
     if (!bake::build_point_hierarchy(scene, config, &hierarchy, nullptr).ok()) return false;
-    std::vector<uint8_t> bytes = bake::encode_asset(scene, hierarchy);
-    return load_asset_memory(bytes.data(), bytes.size(), out).ok();
+    *bytes = bake::encode_asset(scene, hierarchy);
+    return true;
+}
+
+// assets/<relative> baked to `points` points and loaded; false if anything fails.
+inline bool bake_asset(const char* relative, uint32_t points, Asset* out) {
+    std::vector<uint8_t> bytes;
+    return bake_bytes(relative, points, &bytes) &&
+           load_asset_memory(bytes.data(), bytes.size(), out).ok();
 }
 
 }  // namespace stipple::bench

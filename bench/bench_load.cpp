@@ -16,9 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "bake/asset_writer.h"
-#include "bake/point_hierarchy.h"
-#include "bake/scene_import.h"
+#include "bench/bench_asset.h"
 #include "runtime/asset.h"
 #include "runtime/point_placement.h"
 #include "runtime/point_refinement.h"
@@ -34,15 +32,7 @@ struct Fixture {
 
 std::unique_ptr<Fixture> fixture(uint32_t points) {
     auto f = std::make_unique<Fixture>();
-    stipple::bake::RawScene scene;
-    const std::string path = std::string(STIPPLE_SOURCE_DIR) + "/assets/CesiumMan/CesiumMan.glb";
-    if (!stipple::bake::import_scene(path, &scene).ok()) return nullptr;
-    stipple::bake::HierarchyConfig config;
-    config.point_count = points;
-    stipple::bake::PointHierarchy hierarchy;
-    if (!stipple::bake::build_point_hierarchy(scene, config, &hierarchy, nullptr).ok())
-        return nullptr;
-    f->bytes = stipple::bake::encode_asset(scene, hierarchy);
+    if (!stipple::bench::bake_bytes("CesiumMan/CesiumMan.glb", points, &f->bytes)) return nullptr;
     if (!stipple::load_asset_memory(f->bytes.data(), f->bytes.size(), &f->asset).ok())
         return nullptr;
     const size_t n = f->asset.points.point_count;
