@@ -43,17 +43,20 @@ class DoubleSidedFrames : public ::testing::Test {
         EXPECT_TRUE(test::load_png(out + "/frame_0000.png", &img)) << out;
         return img;
     }
-    // Mean darkness of the dots inside the sheet's mask (silhouette lines off). The mask comes
-    // from `mask_asset` if given: a single-sided sheet seen from behind draws no body (its back
-    // faces are culled), so its back view is measured inside the double-sided sheet's mask.
+    // Mean darkness of the dots inside the sheet's mask (silhouette lines off; the mask is
+    // the frame's --mask-out: where the mesh has depth). The mask comes from `mask_asset` if
+    // given: a single-sided sheet seen from behind draws no body (its back faces are culled),
+    // so its back view is measured inside the double-sided sheet's mask.
     static double tone(const std::string& asset, const std::string& name, std::string args,
                        const std::string& mask_asset = "") {
-        args += " --no-silhouettes";
-        test::Image paper = frame(mask_asset.empty() ? asset : mask_asset, name + "_mask",
-                                  args + " --tone 0 --background 808080");
+        args += " --no-silhouettes --mask-out";
+        std::string masked = name;
+        if (!mask_asset.empty()) frame(mask_asset, masked = name + "_mask", args);
         test::Image dots = frame(asset, name, args);
+        test::Image mask;
+        EXPECT_TRUE(test::load_png(dir + "/" + masked + "/mask_0000.png", &mask)) << masked;
         size_t pixels = 0;
-        const double d = test::mean_darkness(dots, test::silhouette(paper), &pixels);
+        const double d = test::mean_darkness(dots, test::silhouette(mask), &pixels);
         EXPECT_GT(pixels, 2000u) << name;
         return d;
     }
