@@ -60,7 +60,9 @@ struct SurfaceReach {
     Buffer<uint32_t> weld;         // vertex -> canonical vertex (same position)
     Buffer<uint32_t> start, tris;  // canonical vertex -> its triangles (CSR)
     Buffer<uint32_t> stamp;        // per triangle: last point that reached it
-    Buffer<uint32_t> queue;        // per triangle
+    Buffer<uint32_t> tested;       // per triangle: last point that tested its sphere
+    Buffer<uint32_t> walked;       // per canonical vertex: last point that walked its triangles
+    Buffer<uint32_t> queue;        // canonical vertices to walk
     Buffer<float> sphere;          // per triangle: centroid xyz, radius
 
     glm::vec3 vertex(uint32_t v) const {
@@ -76,9 +78,13 @@ struct SurfaceReach {
         start = make_buffer<uint32_t>(nv + 2);
         tris = make_buffer<uint32_t>(size_t(nt) * 3 + 1);
         stamp = make_buffer<uint32_t>(nt + 1);
-        queue = make_buffer<uint32_t>(nt + 1);
+        tested = make_buffer<uint32_t>(nt + 1);
+        walked = make_buffer<uint32_t>(nv + 1);
+        queue = make_buffer<uint32_t>(nv + 1);
         sphere = make_buffer<float>(size_t(nt) * 4 + 4);
-        if (!order || !weld || !start || !tris || !stamp || !queue || !sphere) return false;
+        if (!order || !weld || !start || !tris || !stamp || !tested || !walked || !queue || !sphere)
+            return false;
+        std::fill(walked.get(), walked.get() + nv + 1, ~0u);
         for (uint32_t v = 0; v < nv; ++v) order[v] = v;
         auto less = [&](uint32_t a, uint32_t b) {
             const float* pa = m.positions + size_t(a) * 3;
@@ -96,7 +102,7 @@ struct SurfaceReach {
         if (!fill) return false;
         std::copy(start.get(), start.get() + nv, fill.get());
         for (uint32_t t = 0; t < nt; ++t) {
-            stamp[t] = ~0u;
+            stamp[t] = tested[t] = ~0u;
             const uint32_t* tri = m.indices + size_t(t) * 3;
             for (int c = 0; c < 3; ++c) tris[fill[weld[tri[c]]]++] = t;
             const glm::vec3 a = vertex(tri[0]), b = vertex(tri[1]), cc = vertex(tri[2]);
@@ -110,23 +116,34 @@ struct SurfaceReach {
         return true;
     }
 
-    // Marks (stamp = id) the triangles reachable from `host` within `reach` of p.
+    // Queues the canonical vertices of triangle t not yet walked for point id.
+    void reach_corners(uint32_t id, uint32_t t, uint32_t* tail) {
+        const uint32_t* tri = mesh->indices + size_t(t) * 3;
+        for (int c = 0; c < 3; ++c) {
+            const uint32_t v = weld[tri[c]];
+            if (walked[v] == id) continue;
+            walked[v] = id;
+            queue[(*tail)++] = v;
+        }
+    }
+
+    // Marks (stamp = id) the triangles reachable from `host` within `reach` of p: those
+    // sharing a vertex with a marked one whose sphere meets the ball. Each vertex's triangles
+    // are walked once and each triangle's sphere tested once per point.
     void mark(uint32_t id, uint32_t host, const glm::vec3& p, float reach) {
         uint32_t head = 0, tail = 0;
-        stamp[host] = id;
-        queue[tail++] = host;
+        stamp[host] = tested[host] = id;
+        reach_corners(id, host, &tail);
         while (head < tail) {
-            const uint32_t* tri = mesh->indices + size_t(queue[head++]) * 3;
-            for (int c = 0; c < 3; ++c) {
-                const uint32_t v = weld[tri[c]];
-                for (uint32_t k = start[v]; k < start[v + 1]; ++k) {
-                    const uint32_t u = tris[k];
-                    if (stamp[u] == id) continue;
-                    const float* sp = sphere.get() + size_t(u) * 4;
-                    if (glm::length(glm::vec3(sp[0], sp[1], sp[2]) - p) > reach + sp[3]) continue;
-                    stamp[u] = id;
-                    queue[tail++] = u;
-                }
+            const uint32_t v = queue[head++];
+            for (uint32_t k = start[v]; k < start[v + 1]; ++k) {
+                const uint32_t u = tris[k];
+                if (tested[u] == id) continue;
+                tested[u] = id;
+                const float* sp = sphere.get() + size_t(u) * 4;
+                if (glm::length(glm::vec3(sp[0], sp[1], sp[2]) - p) > reach + sp[3]) continue;
+                stamp[u] = id;
+                reach_corners(id, u, &tail);
             }
         }
     }

@@ -59,15 +59,27 @@ bool weld(const MeshView& m, uint32_t* indices, Buffer<uint32_t>* seam, uint32_t
     return true;
 }
 
-// Render triangles around each render vertex (CSR).
+// Render triangles around each render vertex (CSR); mark: per render triangle, the last chain
+// search that reached it (one compare instead of a scan of the search's list).
 struct Adjacency {
-    Buffer<uint32_t> begin, triangle;
+    Buffer<uint32_t> begin, triangle, mark;
+    uint32_t triangle_count = 0, search = 0;
+
+    uint32_t next_search() {
+        if (++search == 0) {  // wrapped: forget every mark
+            std::fill(mark.get(), mark.get() + triangle_count, 0u);
+            search = 1;
+        }
+        return search;
+    }
 };
 
 bool build_adjacency(const MeshView& m, Adjacency* a) {
     if (!alloc(&a->begin, size_t(m.vertex_count) + 1) ||
-        !alloc(&a->triangle, size_t(m.triangle_count) * 3))
+        !alloc(&a->triangle, size_t(m.triangle_count) * 3) || !alloc(&a->mark, m.triangle_count))
         return false;
+    a->triangle_count = m.triangle_count;
+    std::fill(a->mark.get(), a->mark.get() + m.triangle_count, 0u);
     std::fill(a->begin.get(), a->begin.get() + m.vertex_count + 1, 0u);
     for (size_t i = 0; i < size_t(m.triangle_count) * 3; ++i) ++a->begin[m.indices[i] + 1];
     for (uint32_t v = 0; v < m.vertex_count; ++v) a->begin[v + 1] += a->begin[v];
@@ -98,7 +110,7 @@ bool shared_edge(const MeshView& m, uint32_t s, uint32_t t, uint32_t* a, uint32_
 
 // The fewest triangles from hx to hy across shared edges, at most kSpanPerEdge of them, into
 // seq (hx first); 0 if none.
-uint32_t triangle_chain(const MeshView& m, const Adjacency& adj, uint32_t hx, uint32_t hy,
+uint32_t triangle_chain(const MeshView& m, Adjacency& adj, uint32_t hx, uint32_t hy,
                         uint32_t* seq) {
     uint32_t ea, eb;
     if (hx != hy && shared_edge(m, hx, hy, &ea, &eb)) {  // most pairs: neighbours, no search
@@ -108,7 +120,9 @@ uint32_t triangle_chain(const MeshView& m, const Adjacency& adj, uint32_t hx, ui
     }
     constexpr uint32_t kSeen = 256;
     uint32_t seen[kSeen], parent[kSeen], depth[kSeen], count = 1, head = 0;
+    const uint32_t search = adj.next_search();
     seen[0] = hx;
+    adj.mark[hx] = search;
     parent[0] = kNone;
     depth[0] = 1;
     while (head < count) {
@@ -124,10 +138,9 @@ uint32_t triangle_chain(const MeshView& m, const Adjacency& adj, uint32_t hx, ui
             for (uint32_t e = adj.begin[tri[k]]; e < adj.begin[tri[k] + 1]; ++e) {
                 const uint32_t u = adj.triangle[e];
                 uint32_t a, b;
+                if (adj.mark[u] == search || count == kSeen) continue;  // known, or full
                 if (!shared_edge(m, seen[at], u, &a, &b)) continue;
-                bool known = false;
-                for (uint32_t i = 0; i < count && !known; ++i) known = seen[i] == u;
-                if (known || count == kSeen) continue;
+                adj.mark[u] = search;
                 seen[count] = u;
                 parent[count] = at;
                 depth[count++] = depth[at] + 1;
@@ -154,7 +167,7 @@ float best_crossing(glm::vec3 a, glm::vec3 b, glm::vec3 u, glm::vec3 w) {
 // shared edge where coordinate descent puts it (any crossing gives a path, so any is an upper
 // bound); through a shared vertex when that is shorter. The chain's triangles go to span
 // (kNone: unused). Infinity when the hosts are further apart than kSpanPerEdge triangles.
-float path_bound(const MeshView& m, const Adjacency& adj, glm::vec3 x, uint32_t hx, glm::vec3 y,
+float path_bound(const MeshView& m, Adjacency& adj, glm::vec3 x, uint32_t hx, glm::vec3 y,
                  uint32_t hy, uint32_t* span) {
     for (uint32_t i = 0; i < kSpanPerEdge; ++i) span[i] = kNone;
     span[0] = hx;
@@ -246,7 +259,40 @@ struct TriangleBounds {
     double area = 0.0;
 };
 
-bool triangle_bounds(const MeshView& domain, const MeshView& topology, const Adjacency& adj,
+constexpr int kEnds[3][2] = {{0, 1}, {0, 2}, {1, 2}};  // edge e of a triangle: its corners
+
+// The path bound of edge e of every domain triangle t into g[t * 3 + e], its render triangles
+// into spans + (t * 3 + e) * kSpanPerEdge: once per edge (the triangles on either side copy
+// it), from its lower-numbered corner to the other.
+bool edge_paths(const MeshView& domain, const MeshView& topology, Adjacency& adj,
+                const PointsView& points, float* g, uint32_t* spans) {
+    const size_t sides = size_t(domain.triangle_count) * 3;
+    Buffer<uint64_t> key = make_buffer<uint64_t>(sides);
+    Buffer<uint32_t> order = make_buffer<uint32_t>(sides);
+    if (!key || !order) return false;
+    for (size_t j = 0; j < sides; ++j) {
+        const uint32_t* tri = domain.indices + (j / 3) * 3;
+        const uint32_t x = tri[kEnds[j % 3][0]], y = tri[kEnds[j % 3][1]];
+        key[j] = uint64_t(std::min(x, y)) << 32 | std::max(x, y);
+        order[j] = uint32_t(j);
+    }
+    std::sort(order.get(), order.get() + sides,
+              [&](uint32_t a, uint32_t b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
+    for (size_t r = 0; r < sides;) {
+        const uint32_t first = order[r];
+        const uint32_t x = uint32_t(key[first] >> 32), y = uint32_t(key[first]);
+        uint32_t* span = spans + size_t(first) * kSpanPerEdge;
+        g[first] = path_bound(topology, adj, vertex(domain, x), points.host_triangle[x],
+                              vertex(domain, y), points.host_triangle[y], span);
+        for (++r; r < sides && key[order[r]] == key[first]; ++r) {
+            g[order[r]] = g[first];
+            std::copy(span, span + kSpanPerEdge, spans + size_t(order[r]) * kSpanPerEdge);
+        }
+    }
+    return true;
+}
+
+bool triangle_bounds(const MeshView& domain, const MeshView& topology, Adjacency& adj,
                      const PointsView& points, const float* bind_area, const float* density,
                      const float* phase, TriangleBounds* b) {
     const uint32_t n = domain.triangle_count;
@@ -254,15 +300,16 @@ bool triangle_bounds(const MeshView& domain, const MeshView& topology, const Adj
     b->lower = make_buffer<float>(size_t(n) * 2);
     b->terms = make_buffer<float>(size_t(n) * 3);
     b->shortest = make_buffer<float>(n);
-    if (!b->spans || !b->lower || !b->terms || !b->shortest) return false;
+    Buffer<float> paths = make_buffer<float>(size_t(n) * 3);
+    if (!b->spans || !b->lower || !b->terms || !b->shortest || !paths ||
+        !edge_paths(domain, topology, adj, points, paths.get(), b->spans.get()))
+        return false;
     for (uint32_t t = 0; t < n; ++t) {
         const uint32_t* tri = domain.indices + size_t(t) * 3;
         glm::vec3 p[3];
-        uint32_t h[3];
         bool in = true;  // every corner in its host triangle (barycentric in [0, 1])
         for (int k = 0; k < 3; ++k) {
             p[k] = vertex(domain, tri[k]);
-            h[k] = points.host_triangle[tri[k]];
             const float u = points.bary_u[tri[k]], v = points.bary_v[tri[k]];
             in = in && u >= -1e-6f && v >= -1e-6f && 1.0f - u - v >= -1e-6f;
         }
@@ -271,12 +318,7 @@ bool triangle_bounds(const MeshView& domain, const MeshView& topology, const Adj
         b->hi = glm::max(b->hi, centre);
         const float area = bind_area[t];
         b->area += area > 0.0f ? area : 0.0f;
-        uint32_t* span = b->spans.get() + size_t(t) * kSpanPerTriangle;
-        float g[3];
-        const int ends[3][2] = {{0, 1}, {0, 2}, {1, 2}};
-        for (int e = 0; e < 3; ++e)
-            g[e] = path_bound(topology, adj, p[ends[e][0]], h[ends[e][0]], p[ends[e][1]],
-                              h[ends[e][1]], span + e * kSpanPerEdge);
+        const float* g = paths.get() + size_t(t) * 3;
         const float pair = std::min({g[0] * g[1], g[0] * g[2], g[1] * g[2]});
         b->shortest[t] = std::min({g[0], g[1], g[2]});
         const float q = 0.5f * pair / area;  // posed area <= L^2 q bind area
