@@ -125,13 +125,14 @@ uint32_t triangle_chain(const MeshView& m, Adjacency& adj, uint32_t hx, uint32_t
     adj.mark[hx] = search;
     parent[0] = kNone;
     depth[0] = 1;
+    auto chain_to = [&](uint32_t at) {  // the chain from hx to seen[at], into seq
+        uint32_t n = depth[at];
+        for (uint32_t i = at; i != kNone; i = parent[i]) seq[--n] = seen[i];
+        return depth[at];
+    };
+    if (hx == hy) return chain_to(0);
     while (head < count) {
         const uint32_t at = head++;
-        if (seen[at] == hy) {
-            uint32_t n = depth[at];
-            for (uint32_t i = at; i != kNone; i = parent[i]) seq[--n] = seen[i];
-            return depth[at];
-        }
         if (depth[at] >= kSpanPerEdge) continue;
         const uint32_t* tri = m.indices + size_t(seen[at]) * 3;
         for (int k = 0; k < 3; ++k)
@@ -144,6 +145,9 @@ uint32_t triangle_chain(const MeshView& m, Adjacency& adj, uint32_t hx, uint32_t
                 seen[count] = u;
                 parent[count] = at;
                 depth[count++] = depth[at] + 1;
+                // Found when reached: breadth first, no later chain is shorter, and this is
+                // the one its turn in the queue would have given.
+                if (u == hy) return chain_to(count - 1);
             }
     }
     return 0;
