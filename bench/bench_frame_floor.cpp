@@ -13,6 +13,9 @@
 // "occluder": the frame with the depth pass drawing the bake's simplified occluder (OCCL,
 // bake/occluder.h, 10% of the triangles; runtime/renderer_occluder.cpp) instead of the full
 // mesh; the other variants draw the full mesh (the assets carry the section; it is turned off).
+// "2 threads": the frame and the occluder frame again with a two-thread pool, which runs the
+// point part on its worker beside the mesh pass (pipeline_frame); the other variants use the
+// default, one thread.
 // "before": the frame drawn the way pipeline_frame drew it before the mesh pass went ahead of
 // the point stages and the clear was narrowed (bench/frame_floor_before.h).
 // Each round runs kFrames frames of each, replaying frame k of the clip in all of them.
@@ -67,6 +70,8 @@ struct Case {
     std::vector<double> replay_all_ms, replay_all_cpu;  // replay, every triangle to the GPU
     std::vector<double> frame_all_ms;                   // frame, every triangle to the GPU
     std::vector<double> occluder_ms;                    // frame, the occluder's depth pass
+    std::vector<double> two_ms, two_occluder_ms;        // the same two with 2 threads
+    stipple::ThreadPool two;                            // swapped into the pipeline for those
     std::vector<stipple::StageTimes> stages;            // per round, per frame
     frame_floor::Before before;  // the frame drawn the previous way (frame_floor_before.h)
 };
@@ -129,7 +134,9 @@ bool make_case(Case* c, const GlApi& gl, const char* clip_name) {
     config.height = kHeight;
     config.relevance_update = true;
     c->pipeline = std::make_unique<stipple::Pipeline>();
-    if (!stipple::pipeline_init(c->pipeline.get(), c->asset, gl, config).ok()) return false;
+    if (!stipple::pipeline_init(c->pipeline.get(), c->asset, gl, config).ok() ||
+        !stipple::thread_pool_init(&c->two, 2).ok())
+        return false;
     c->pipeline->renderer.occluder_enabled = false;  // on only in run_occluder
     c->clip = std::max(0, stipple::find_clip(c->asset, clip_name));
     capture(c);
@@ -340,13 +347,27 @@ void run_before(Case* c) {
     c->before.draw_ms.push_back(draw / kFrames);
 }
 
-void run_occluder(Case* c) {
+void run_occluder(Case* c, std::vector<double>* ms) {
     c->pipeline->renderer.occluder_enabled = true;
     const Clock::time_point start = Clock::now();
     for (int k = 0; k < kFrames; ++k)
         stipple::pipeline_frame(c->pipeline.get(), c->clip, float(k) / 30.0f, nullptr);
-    c->occluder_ms.push_back(ms_between(start, Clock::now()) / kFrames);
+    ms->push_back(ms_between(start, Clock::now()) / kFrames);
     c->pipeline->renderer.occluder_enabled = false;
+}
+
+// The frame (or the occluder frame) with the two-thread pool in the pipeline.
+void run_two_threads(Case* c, bool occluder) {
+    std::swap(c->pipeline->pool, c->two);
+    if (occluder) {
+        run_occluder(c, &c->two_occluder_ms);
+    } else {
+        const Clock::time_point start = Clock::now();
+        for (int k = 0; k < kFrames; ++k)
+            stipple::pipeline_frame(c->pipeline.get(), c->clip, float(k) / 30.0f, nullptr);
+        c->two_ms.push_back(ms_between(start, Clock::now()) / kFrames);
+    }
+    std::swap(c->pipeline->pool, c->two);
 }
 
 void run_floor(Case* c, const Bare& b) {
@@ -446,6 +467,14 @@ void report_occluder(const Case& c) {
                 median(c.occluder_ms) / median(c.floor_ms), 1000.0 / median(c.occluder_ms));
 }
 
+void report_threads(const Case& c) {
+    std::printf("| %s | %s | %s | %s | %s | %.2f / %.2f | %.0f | %.0f |\n", c.name,
+                min_median(c.frame_ms).c_str(), min_median(c.two_ms).c_str(),
+                min_median(c.two_occluder_ms).c_str(), min_median(c.floor_ms).c_str(),
+                minimum(c.two_ms) / minimum(c.floor_ms), median(c.two_ms) / median(c.floor_ms),
+                1000.0 / median(c.two_ms), 1000.0 / median(c.two_occluder_ms));
+}
+
 void print_tables(const Case (&cases)[2], int rounds) {
     std::printf(
         "1280x720, %d rounds of %d frames each, ms per frame (min / median over rounds)\n\n",
@@ -474,6 +503,13 @@ void print_tables(const Case (&cases)[2], int rounds) {
         "occluder / frame (min, median) | occluder / floor (min, median) | fps, occluder |\n"
         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (const Case& c : cases) report_occluder(c);
+    std::printf(
+        "\nTwo threads: the point part on the pool's worker beside the mesh pass (ms per frame,"
+        "\nmin / median over rounds):\n\n"
+        "| asset | frame, 1 thread | frame, 2 threads | occluder, 2 threads | floor | "
+        "2 threads / floor (min, median) | fps, 2 threads | fps, occluder, 2 threads |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    for (const Case& c : cases) report_threads(c);
 }
 
 int rounds_from(int argc, char** argv) {
@@ -513,14 +549,15 @@ int main(int argc, char** argv) {
             return 1;
         }
     for (int r = 0; r < rounds; ++r)
-        for (int i = 0; i < 2; ++i) {  // the order of the seven turns every round
-            for (int v = 0; v < 7; ++v) {
-                const int which = (v + r) % 7;
+        for (int i = 0; i < 2; ++i) {  // the order of the nine turns every round
+            for (int v = 0; v < 9; ++v) {
+                const int which = (v + r) % 9;
                 if (which <= 1) run_frames(&cases[i], which == 1);
                 if (which == 2) run_floor(&cases[i], bare[i]);
                 if (which == 3 || which == 4) run_replay(&cases[i], which == 4);
-                if (which == 5) run_occluder(&cases[i]);
+                if (which == 5) run_occluder(&cases[i], &cases[i].occluder_ms);
                 if (which == 6) run_before(&cases[i]);
+                if (which == 7 || which == 8) run_two_threads(&cases[i], which == 8);
             }
         }
     print_tables(cases, rounds);
@@ -528,6 +565,9 @@ int main(int argc, char** argv) {
     for (const Case& c : cases)
         frame_floor::report_before(c.name, c.before, c.frame_ms, c.frame_cpu, c.floor_ms,
                                    stage_median(c, &stipple::StageTimes::draw));
-    for (Case& c : cases) stipple::pipeline_destroy(c.pipeline.get());
+    for (Case& c : cases) {
+        stipple::pipeline_destroy(c.pipeline.get());
+        stipple::thread_pool_destroy(&c.two);
+    }
     return 0;
 }

@@ -332,6 +332,29 @@ void line_stages(Pipeline* p, StageTimes* t, StageClock::time_point* clock) {
     if (t) t->silhouette += ms_since(clock);
 }
 
+// The worker's stage times into the frame's.
+void add_point_times(StageTimes* t, const StageTimes& w) {
+    t->place += w.place;
+    t->relevance += w.relevance;
+    t->refine += w.refine;
+    t->size += w.size;
+}
+
+// The point part on one of the pool's workers, beside the caller's mesh pass (llvmpipe shades
+// and bins the mesh on the calling thread, so the point stages take the other core). The
+// stages run on that worker alone: the pool is lent to this one task, and every stage gives
+// the same bytes on any thread count (runtime/point_stages.h). Their times go to `times`
+// (null: not timed), each stage's field written by the worker only.
+struct PointPartTask {
+    Pipeline* p;
+    StageTimes* times;
+};
+void point_part_task(void* context, uint32_t, uint32_t) {
+    const PointPartTask& task = *static_cast<const PointPartTask*>(context);
+    Clock::time_point clock = Clock::now();
+    point_part(task.p, task.times, &clock);
+}
+
 void draw_lines(Pipeline* p) {
     renderer_draw_line_sets(&p->renderer, p->view_projection, p->lines.get(), p->lines_drawn,
                             p->style.crease_lines.get(), p->style.creases_drawn);
@@ -360,8 +383,12 @@ void draw_ink(Pipeline* p, bool lines) {
 // between them) as soon as the mesh is posed and its facing known, and flushes it, so the
 // driver fills the depth while this thread runs the point stages (on llvmpipe the rasterizer
 // threads; the dots pass, whose vertex shader reads that depth, would otherwise wait for it
-// with nothing to do). The GL commands and their order are those of pipeline_update followed
-// by the passes: the picture is the same.
+// with nothing to do). With a worker in the pool (FrameConfig::threads > 1) the point part
+// runs on it from before the mesh pass is submitted: llvmpipe shades and bins the mesh on this
+// thread, inside glDrawElements (7 ms of the horse's 97k triangles), and the point stages
+// take the other core meanwhile. The GL commands and their order are those of pipeline_update
+// followed by the passes, and the stages' bytes do not depend on the thread that runs them:
+// the picture is the same.
 void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
     if (p->particles.enabled) {  // GI'01 strokes instead of stipples
         pipeline_particle_frame(p, &p->particles, state, t);
@@ -375,13 +402,30 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
         pose_mesh(p, state, t, &clock);
         line_stages(p, t, &clock);
     }
+    // The point part runs beside the mesh pass when the pool has a worker (the frame's GL
+    // calls stay on this thread, the pool is the task's until it is finished).
+    const bool beside = !gpu && p->pool.threads > 1;
+    ThreadPool pool = p->pool;
+    StageTimes worker_times;
+    PointPartTask task{p, t ? &worker_times : nullptr};
+    if (beside) {
+        p->pool = ThreadPool();
+        thread_pool_begin(&pool, 1, point_part_task, &task);
+    }
     renderer_draw_fill(&p->renderer, p->view_projection, p->vertex_positions.get(),
                        p->vertex_normals.get(), p->asset->mesh.vertex_count);
     if (early_lines) draw_lines(p);
     if (!gpu) {
         p->renderer.gl.Flush();
+        if (beside) {
+            thread_pool_finish(&pool);
+            p->pool = pool;
+            if (t) add_point_times(t, worker_times);
+        } else {
+            if (t) t->draw += ms_since(&clock);
+            point_part(p, t, &clock);
+        }
         if (t) t->draw += ms_since(&clock);
-        point_part(p, t, &clock);
         stroke_stage_update(&p->strokes, *p->asset, pipeline_stroke_input(*p),
                             p->config.stroke_lod_px);
         if (t) t->strokes += ms_since(&clock);

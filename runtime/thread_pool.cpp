@@ -108,17 +108,15 @@ Status thread_pool_init(ThreadPool* pool, int threads) {
     return {};
 }
 
-void thread_pool_run(ThreadPool* pool, uint32_t count, uint32_t min_per_thread, RangeTask task,
-                     void* context) {
+void thread_pool_begin(ThreadPool* pool, uint32_t count, RangeTask task, void* context) {
     ThreadPoolShared* s = pool->shared;
-    if (!s || count < uint64_t(min_per_thread) * 2u) {
+    if (!s) {
         if (count > 0) task(context, 0, count);
         return;
     }
-    uint64_t generation;
     {
         std::lock_guard<std::mutex> lock(s->mutex);
-        generation = ++s->generation;
+        const uint64_t generation = ++s->generation;
         s->task = task;
         s->context = context;
         s->count = count;
@@ -126,10 +124,36 @@ void thread_pool_run(ThreadPool* pool, uint32_t count, uint32_t min_per_thread, 
         s->claim.store(generation << 8, std::memory_order_release);
     }
     s->start.notify_all();
+}
+
+void thread_pool_finish(ThreadPool* pool) {
+    ThreadPoolShared* s = pool->shared;
+    if (!s) return;
+    uint64_t generation;
+    RangeTask task;
+    void* context;
+    uint32_t count;
+    {
+        std::lock_guard<std::mutex> lock(s->mutex);
+        generation = s->generation;
+        task = s->task;
+        context = s->context;
+        count = s->count;
+    }
     const int ran = run_ranges(s, generation, task, context, count);
     std::unique_lock<std::mutex> lock(s->mutex);
     s->finished += ran;
     s->done.wait(lock, [&] { return s->finished == s->threads; });
+}
+
+void thread_pool_run(ThreadPool* pool, uint32_t count, uint32_t min_per_thread, RangeTask task,
+                     void* context) {
+    if (!pool->shared || count < uint64_t(min_per_thread) * 2u) {
+        if (count > 0) task(context, 0, count);
+        return;
+    }
+    thread_pool_begin(pool, count, task, context);
+    thread_pool_finish(pool);
 }
 
 void thread_pool_destroy(ThreadPool* pool) {

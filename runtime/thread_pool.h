@@ -48,6 +48,15 @@ struct ThreadPool {
 void thread_pool_run(ThreadPool* pool, uint32_t count, uint32_t min_per_thread, RangeTask task,
                      void* context);
 
+// thread_pool_run in two halves, so the caller can do other work while the workers run:
+// begin publishes the task's ranges and wakes the workers; finish runs the ranges no worker
+// has claimed yet on the caller and returns when every range is done. Between the two the
+// caller must not touch what the task reads or writes, nor use the pool. Without workers,
+// begin runs the task itself. With count = 1 the whole task is one range, taken by the first
+// worker to wake (pipeline_frame: the point stages beside the driver's mesh pass).
+void thread_pool_begin(ThreadPool* pool, uint32_t count, RangeTask task, void* context);
+void thread_pool_finish(ThreadPool* pool);
+
 // Joins the workers; the pool is one thread again.
 void thread_pool_destroy(ThreadPool* pool);
 

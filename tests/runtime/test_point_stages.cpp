@@ -117,6 +117,43 @@ TEST_F(PointStagesTest, ThreadsGiveByteIdenticalPointsInARefiningCloseUp) {
     EXPECT_GT(most_refined_, 1000u);  // the run-time refinement's points were compared too
 }
 
+// pipeline_frame with a worker runs the point part beside the mesh pass
+// (runtime/frame_pipeline.cpp): the same points, dots and pixels as on one thread, the stage
+// times still reported.
+TEST_F(PointStagesTest, FramesBesideTheMeshPassGiveTheSameBytes) {
+    for (const float zoom : {1.0f, 6.0f}) {  // a full view and a refining close-up
+        std::unique_ptr<Pipeline> p[2];
+        for (int k = 0; k < 2; ++k) {
+            stipple::FrameConfig config;
+            config.zoom = zoom;
+            config.constant_tone = 0.6f;
+            config.threads = k + 1;
+            p[k] = std::make_unique<Pipeline>();
+            ASSERT_TRUE(stipple::pipeline_init(p[k].get(), asset_, gl_.gl(), config).ok());
+        }
+        const size_t bytes = size_t(p[0]->config.width) * size_t(p[0]->config.height) * 4;
+        std::vector<uint8_t> rgba[2] = {std::vector<uint8_t>(bytes), std::vector<uint8_t>(bytes)};
+        for (int f = 0; f < 6; ++f) {
+            stipple::StageTimes t[2];
+            Outputs o[2];
+            for (int k = 0; k < 2; ++k) {
+                stipple::pipeline_frame(p[k].get(), 0, float(f) / 7.0f, &t[k]);
+                o[k] = outputs(*p[k]);
+                stipple::renderer_read_color(&p[k]->renderer, rgba[k].data());
+            }
+            const std::string what =
+                "zoom " + std::to_string(zoom) + ", frame " + std::to_string(f);
+            EXPECT_GT(o[0].drawn, 100u) << what;
+            expect_identical(o[0], o[1], what);
+            EXPECT_TRUE(rgba[0] == rgba[1]) << what;
+            EXPECT_GT(t[1].place, 0.0) << what;  // timed on the worker, added to the frame's
+            EXPECT_GT(t[1].size, 0.0) << what;
+        }
+        EXPECT_EQ(p[1]->pool.threads, 2);  // lent to the point part and given back
+        for (auto& q : p) stipple::pipeline_destroy(q.get());
+    }
+}
+
 TEST_F(PointStagesTest, ThreadsGiveByteIdenticalPointsOnBothSimdPaths) {
     stipple::point_simd_force(stipple::PointSimd::baseline);
     stipple::FrameConfig config;
