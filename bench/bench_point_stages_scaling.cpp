@@ -27,7 +27,7 @@ using Clock = std::chrono::steady_clock;
 
 struct Scene {
     stipple::Asset asset;
-    std::vector<float> pos, nrm, scale, radius, size;
+    std::vector<float> pos, nrm, scale, radius, size, pairs;
     stipple::SizeParams params;
     stipple::PointStageFrame frame;
 };
@@ -91,6 +91,9 @@ bool make_scene(Scene* sc) {
     f.indices = m.indices;
     f.vertex_positions = m.positions;
     f.vertex_normals = m.normals;
+    sc->pairs.resize(size_t(m.vertex_count) * 8);
+    stipple::pair_vertices(m.vertex_count, m.positions, m.normals, sc->pairs.data());
+    f.vertex_pairs = sc->pairs.data();
     f.scale = sc->scale.data();
     f.fallback_radius = pts.radius;
     f.params = &sc->params;

@@ -90,6 +90,7 @@ bool lod_running_out(const PointClusters& c, const float* size, uint32_t baked) 
 }  // namespace
 
 void pipeline_point_stages(Pipeline* p, bool lod, StageTimes* t, Clock::time_point* clock) {
+    point_stage_pair_vertices(p);  // before any place (runtime/point_stages.h)
     if (lod)
         lod_point_stages(p, t, clock);
     else

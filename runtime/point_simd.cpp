@@ -44,6 +44,17 @@ const char* point_simd_name(PointSimd simd) {
     return simd == PointSimd::avx2 ? "avx2" : "baseline";
 }
 
+void pair_vertices(uint32_t count, const float* positions, const float* normals, float* out) {
+    for (uint32_t v = 0; v < count; ++v) {
+        float* o = out + size_t(v) * 8;
+        for (int k = 0; k < 3; ++k) {
+            o[k] = positions[size_t(v) * 3 + k];
+            o[4 + k] = normals[size_t(v) * 3 + k];
+        }
+        o[3] = o[7] = 0.0f;
+    }
+}
+
 SizeKernelFrame::SizeKernelFrame(const SizeParams& p)
     : params(&p),
       row_w{p.view_projection[0][3], p.view_projection[1][3], p.view_projection[2][3],
@@ -53,8 +64,8 @@ SizeKernelFrame::SizeKernelFrame(const SizeParams& p)
 
 #if !((defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__)))
 // No AVX2 anywhere else: point_simd() is never avx2 there, so these are never called.
-void place_points_avx2(const PointsView&, const uint32_t*, const float*, const float*,
-                       const uint32_t*, uint32_t, uint32_t, float*, float*) {}
+void place_points_avx2(const PointsView&, const uint32_t*, const float*, const uint32_t*, uint32_t,
+                       uint32_t, float*, float*) {}
 void recompute_relevance_avx2(const PointsView&, const float*, const float*, const float*,
                               const uint32_t*, uint32_t, uint32_t, float*) {}
 void size_stipples_avx2(const SizeKernelFrame&, const float*, const float*, const float*,

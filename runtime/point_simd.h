@@ -3,11 +3,11 @@
 // runtime/point_simd_avx2.cpp (compiled for AVX2 by a target pragma, with -ffp-contract=off
 // and no FMA): size and relevance (its area measure) 8 points per step, each point's data
 // loaded on its own and transposed into lanes (AVX2 gathers measured slower than those loads);
-// place one point per step with x, y, z in the lanes of a vector. Otherwise the baseline: the
-// scalar code of point_placement.cpp / stipple_size.cpp (SSE2 scalar on x86-64; NEON targets keep
-// it too). Each kernel does the same IEEE operations in the same order as the scalar code (no FMA,
-// no reciprocal approximations, the same NaN behaviour in comparisons and clamps), so both paths
-// give the same bits (tests/runtime/test_point_stages.cpp checks it).
+// place one point per step with its position and normal in the lanes of one vector. Otherwise the
+// baseline: the scalar code of point_placement.cpp / stipple_size.cpp (SSE2 scalar on x86-64; NEON
+// targets keep it too). Each kernel does the same IEEE operations in the same order as the scalar
+// code (no FMA, no reciprocal approximations, the same NaN behaviour in comparisons and clamps), so
+// both paths give the same bits (tests/runtime/test_point_stages.cpp checks it).
 #pragma once
 #include <cstdint>
 
@@ -41,11 +41,17 @@ struct SizeKernelFrame {
     explicit SizeKernelFrame(const SizeParams& p);
 };
 
+// The posed vertices as place's AVX2 kernel reads them: vertex v's position and normal in
+// out[8 v .. 8 v + 8) as x y z 0 nx ny nz 0 (one 32-byte load per host corner instead of two
+// 12-byte loads from two arrays). Plain copies: the bits of positions and normals.
+void pair_vertices(uint32_t count, const float* positions, const float* normals, float* out);
+
 // The AVX2 kernels over the points list[begin .. end) (list null: the points begin .. end);
-// each writes only those points' outputs. Only call them when point_simd() is avx2.
-void place_points_avx2(const PointsView& points, const uint32_t* indices, const float* positions,
-                       const float* normals, const uint32_t* list, uint32_t begin, uint32_t end,
-                       float* out_positions, float* out_normals);
+// each writes only those points' outputs. Only call them when point_simd() is avx2. Place
+// reads the vertices as pair_vertices lays them out.
+void place_points_avx2(const PointsView& points, const uint32_t* indices, const float* pairs,
+                       const uint32_t* list, uint32_t begin, uint32_t end, float* out_positions,
+                       float* out_normals);
 void recompute_relevance_avx2(const PointsView& points, const float* point_positions,
                               const float* scale, const float* fallback_radius,
                               const uint32_t* list, uint32_t begin, uint32_t end,

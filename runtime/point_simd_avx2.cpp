@@ -223,22 +223,20 @@ inline void store3(float* p, __m128 v) {
     _mm_store_ss(p + 2, _mm_movehl_ps(v, v));
 }
 
-// One point of place_point, x, y, z in the lanes of one vector (8 points per step with AVX2
-// gathers was slower than this on a Zen 4, whose gathers cost more than the loads they
-// replace).
-inline void place_point4(const PointsView& points, const uint32_t* indices, const float* positions,
-                         const float* normals, uint32_t i, float* out_positions,
-                         float* out_normals) {
+// One point of place_point: its position and normal in the lanes of one vector, blended from
+// its host corners' vertex pairs (pair_vertices: x y z 0 nx ny nz 0) in place_point's order,
+// (u a + v b) + w c; the normal's length as place_point sums it.
+inline void place_point8(const PointsView& points, const uint32_t* indices, const float* pairs,
+                         uint32_t i, float* out_positions, float* out_normals) {
     const uint32_t* tri = indices + size_t(points.host_triangle[i]) * 3;
     const float u = points.bary_u[i], v = points.bary_v[i], w = 1.0f - u - v;
-    const __m128 uu = _mm_set1_ps(u), vv = _mm_set1_ps(v), ww = _mm_set1_ps(w);
-    const size_t a = size_t(tri[0]) * 3, b = size_t(tri[1]) * 3, c = size_t(tri[2]) * 3;
-    const __m128 p = _mm_add_ps(
-        _mm_add_ps(_mm_mul_ps(uu, load3(positions + a)), _mm_mul_ps(vv, load3(positions + b))),
-        _mm_mul_ps(ww, load3(positions + c)));
-    const __m128 n = _mm_add_ps(
-        _mm_add_ps(_mm_mul_ps(uu, load3(normals + a)), _mm_mul_ps(vv, load3(normals + b))),
-        _mm_mul_ps(ww, load3(normals + c)));
+    const f8 a = _mm256_loadu_ps(pairs + size_t(tri[0]) * 8);
+    const f8 b = _mm256_loadu_ps(pairs + size_t(tri[1]) * 8);
+    const f8 c = _mm256_loadu_ps(pairs + size_t(tri[2]) * 8);
+    const f8 pn =
+        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(splat(u), a), _mm256_mul_ps(splat(v), b)),
+                      _mm256_mul_ps(splat(w), c));
+    const __m128 p = _mm256_castps256_ps128(pn), n = _mm256_extractf128_ps(pn, 1);
     const __m128 nn = _mm_mul_ps(n, n);
     const float len2 = (lane0(nn) + lane<1>(nn)) + lane<2>(nn);
     const float inv = len2 > 1e-20f ? 1.0f / sqrt1(len2) : 0.0f;
@@ -266,28 +264,23 @@ inline void prefetch_host(const PointsView& points, const uint32_t* indices, uin
     prefetch(indices + size_t(points.host_triangle[i]) * 3);
 }
 
-inline void prefetch_vertices(const PointsView& points, const uint32_t* indices,
-                              const float* positions, const float* normals, uint32_t i) {
+inline void prefetch_vertices(const PointsView& points, const uint32_t* indices, const float* pairs,
+                              uint32_t i) {
     const uint32_t* tri = indices + size_t(points.host_triangle[i]) * 3;
-    for (int k = 0; k < 3; ++k) {
-        prefetch(positions + size_t(tri[k]) * 3);
-        prefetch(normals + size_t(tri[k]) * 3);
-    }
+    for (int k = 0; k < 3; ++k) prefetch(pairs + size_t(tri[k]) * 8);
 }
 
 }  // namespace
 
 // point_placement.cpp's place_point (Thesis Alg. 6.3).
-void place_points_avx2(const PointsView& points, const uint32_t* indices, const float* positions,
-                       const float* normals, const uint32_t* list, uint32_t begin, uint32_t end,
-                       float* out_positions, float* out_normals) {
+void place_points_avx2(const PointsView& points, const uint32_t* indices, const float* pairs,
+                       const uint32_t* list, uint32_t begin, uint32_t end, float* out_positions,
+                       float* out_normals) {
     for (uint32_t j = begin; j < end; ++j) {
         if (j + kFar < end) prefetch_host(points, indices, list ? list[j + kFar] : j + kFar);
         if (j + kNear < end)
-            prefetch_vertices(points, indices, positions, normals,
-                              list ? list[j + kNear] : j + kNear);
-        place_point4(points, indices, positions, normals, list ? list[j] : j, out_positions,
-                     out_normals);
+            prefetch_vertices(points, indices, pairs, list ? list[j + kNear] : j + kNear);
+        place_point8(points, indices, pairs, list ? list[j] : j, out_positions, out_normals);
     }
 }
 

@@ -18,9 +18,9 @@ struct StageTask {
 void place_range(void* context, uint32_t begin, uint32_t end) {
     const StageTask& t = *static_cast<const StageTask*>(context);
     const PointStageFrame& f = *t.f;
-    if (t.simd == PointSimd::avx2) {
-        place_points_avx2(*f.points, f.indices, f.vertex_positions, f.vertex_normals, t.list, begin,
-                          end, f.positions, f.normals);
+    if (t.simd == PointSimd::avx2 && f.vertex_pairs) {
+        place_points_avx2(*f.points, f.indices, f.vertex_pairs, t.list, begin, end, f.positions,
+                          f.normals);
     } else if (t.list) {
         place_listed_points(*f.points, f.indices, f.vertex_positions, f.vertex_normals,
                             t.list + begin, end - begin, f.positions, f.normals);
@@ -71,6 +71,7 @@ PointStageFrame point_stage_frame(Pipeline* p) {
     f.indices = p->asset->mesh.indices;
     f.vertex_positions = p->vertex_positions.get();
     f.vertex_normals = p->vertex_normals.get();
+    f.vertex_pairs = p->vertex_pairs.get();
     f.scale = p->radius_scale.get();
     f.fallback_radius = p->rest_radius.get();
     f.params = &p->size_params;
@@ -79,6 +80,12 @@ PointStageFrame point_stage_frame(Pipeline* p) {
     f.radius = p->radius.get();
     f.size = p->size.get();
     return f;
+}
+
+void point_stage_pair_vertices(Pipeline* p) {
+    if (point_simd() != PointSimd::avx2 || !p->vertex_pairs) return;
+    pair_vertices(p->asset->mesh.vertex_count, p->vertex_positions.get(), p->vertex_normals.get(),
+                  p->vertex_pairs.get());
 }
 
 void point_stage_place(ThreadPool* pool, const PointStageFrame& f, const uint32_t* list,

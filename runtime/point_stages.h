@@ -18,7 +18,10 @@ struct PointStageFrame {
     const PointsView* points = nullptr;
     const uint32_t* indices = nullptr;  // the mesh's triangles
     const float* vertex_positions = nullptr;
-    const float* vertex_normals = nullptr;   // the posed mesh, 3 floats per vertex
+    const float* vertex_normals = nullptr;  // the posed mesh, 3 floats per vertex
+    // The same as pair_vertices lays them out (runtime/point_simd.h), for AVX2 place; null:
+    // place runs the scalar code.
+    const float* vertex_pairs = nullptr;
     const float* scale = nullptr;            // relevance_scale (point_placement.h)
     const float* fallback_radius = nullptr;  // radius of points without neighbours
     const SizeParams* params = nullptr;
@@ -31,6 +34,10 @@ struct PointStageFrame {
 struct Pipeline;  // runtime/frame_pipeline.h
 // The pipeline's buffers for this frame's stages (the baked points' part of them).
 PointStageFrame point_stage_frame(Pipeline* p);
+
+// Fills the pipeline's vertex_pairs from the posed mesh when place runs on the AVX2 path (one
+// pass over the vertices; the frame's point stages call it once, before any place).
+void point_stage_pair_vertices(Pipeline* p);
 
 // Below this many points per thread a stage runs on the caller alone.
 inline constexpr uint32_t kMinPointsPerThread = 2048;

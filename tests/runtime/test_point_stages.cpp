@@ -232,7 +232,9 @@ TEST_F(PointStagesTest, SimdKernelsMatchTheScalarCodeOnEdgeCases) {
     params.ambient = 0.1f;
     std::vector<uint32_t> list;
     for (uint32_t i = 0; i < n; i += 3) list.push_back(i);
-    list.resize(list.size() - list.size() % 8 - 3);  // a tail of 5
+    list.resize(list.size() - list.size() % 8 - 3);        // a tail of 5
+    std::vector<float> pairs(size_t(m.vertex_count) * 8);  // place's AVX2 input
+    stipple::pair_vertices(m.vertex_count, m.positions, vn.data(), pairs.data());
     struct Run {
         std::vector<float> pos, nrm, radius, size;
     } run[2];
@@ -248,6 +250,7 @@ TEST_F(PointStagesTest, SimdKernelsMatchTheScalarCodeOnEdgeCases) {
         f.indices = m.indices;
         f.vertex_positions = m.positions;
         f.vertex_normals = vn.data();
+        f.vertex_pairs = pairs.data();
         f.scale = scale.data();
         f.fallback_radius = pts.radius;
         f.params = &params;
