@@ -449,11 +449,11 @@ void report_cpu(const Case& c) {
 
 void report_stages(const Case& c) {
     using T = stipple::StageTimes;
-    std::printf("| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", c.name,
-                stage_median(c, &T::sample), stage_median(c, &T::skin), stage_median(c, &T::place),
-                stage_median(c, &T::relevance), stage_median(c, &T::refine),
-                stage_median(c, &T::size), stage_median(c, &T::silhouette),
-                stage_median(c, &T::draw));
+    std::printf("| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", c.name,
+                stage_median(c, &T::sample), stage_median(c, &T::skin), stage_median(c, &T::select),
+                stage_median(c, &T::place), stage_median(c, &T::relevance),
+                stage_median(c, &T::refine), stage_median(c, &T::size),
+                stage_median(c, &T::silhouette), stage_median(c, &T::draw));
 }
 
 void report_occluder(const Case& c) {
@@ -494,8 +494,8 @@ void print_tables(const Case (&cases)[2], int rounds) {
     for (const Case& c : cases) report_cpu(c);
     std::printf("\nStage times, ms per frame (median over rounds):\n\n");
     std::printf(
-        "| asset | sample | skin | place | relevance | refine | size | silhouette | "
-        "draw |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+        "| asset | sample | skin | select | place | relevance | refine | size | silhouette | "
+        "draw |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (const Case& c : cases) report_stages(c);
     std::printf("\nThe occluder's depth pass (ms per frame, min / median over rounds):\n\n");
     std::printf(

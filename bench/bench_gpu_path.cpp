@@ -93,7 +93,7 @@ void BM_FrameCpuVsGpuPath(benchmark::State& state) {
                 const Clock::time_point a = Clock::now();
                 stipple::pipeline_frame(s.pipelines[k].get(), 0, float(f) / 30.0f, &times);
                 frame_ms[k].push_back(ms(a, Clock::now()));
-                stage_ms[k].push_back(times.place + times.relevance + times.size);
+                stage_ms[k].push_back(times.select + times.place + times.relevance + times.size);
             }
             stage_ms[2].back() = feedback_pass_ms(s.pipelines[2].get(), true);
             // Without Alg. 6.4 (rest-pose radii): no neighbour walk.

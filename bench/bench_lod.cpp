@@ -120,6 +120,7 @@ void BM_LodCpuStages(benchmark::State& state) {
         walk.time += 1.0f / 30.0f;
     }
     const double frames = double(state.iterations());
+    state.counters["select_ms"] = times.select / frames;
     state.counters["place_ms"] = times.place / frames;
     state.counters["relevance_ms"] = times.relevance / frames;
     state.counters["size_ms"] = times.size / frames;

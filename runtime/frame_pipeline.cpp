@@ -335,6 +335,7 @@ void line_stages(Pipeline* p, StageTimes* t, StageClock::time_point* clock) {
 
 // The worker's stage times into the frame's.
 void add_point_times(StageTimes* t, const StageTimes& w) {
+    t->select += w.select;
     t->place += w.place;
     t->relevance += w.relevance;
     t->refine += w.refine;

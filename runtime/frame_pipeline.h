@@ -35,8 +35,9 @@ struct AnimationState {
 };
 
 struct StageTimes {  // milliseconds
-    double sample = 0, skin = 0, place = 0, relevance = 0, refine = 0, size = 0, silhouette = 0,
-           strokes = 0, draw = 0, readback = 0;
+    // select: the level of detail's choice of points (runtime/point_clusters.h), before place
+    double sample = 0, skin = 0, select = 0, place = 0, relevance = 0, refine = 0, size = 0,
+           silhouette = 0, strokes = 0, draw = 0, readback = 0;
 };
 
 struct Pipeline {

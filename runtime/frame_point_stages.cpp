@@ -64,6 +64,7 @@ void lod_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
     const uint32_t baked = a.points.point_count;  // hierarchy_running_out's finest quarter
     if (p->config.refinement_budget > 0) frame.size_from = baked - baked / 4;
     point_clusters_select(&c, a, frame);
+    if (t) t->select += ms_since(clock);
     const uint32_t* run = c.run.get();
     const PointStageFrame f = point_stage_frame(p);  // threads and SIMD: runtime/point_stages.h
     point_stage_place(&p->pool, f, c.placed.get(), c.placed_count);
@@ -91,6 +92,7 @@ bool lod_running_out(const PointClusters& c, const float* size, uint32_t baked) 
 
 void pipeline_point_stages(Pipeline* p, bool lod, StageTimes* t, Clock::time_point* clock) {
     point_stage_pair_vertices(p);  // before any place (runtime/point_stages.h)
+    if (t) t->place += ms_since(clock);
     if (lod)
         lod_point_stages(p, t, clock);
     else

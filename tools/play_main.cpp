@@ -309,9 +309,11 @@ void print_stats(const Options& o, const stipple::Asset& asset, const Clips& cli
     }
     j["ms_per_frame"] = fixed(t.frame_ms / n, 3);
     const std::pair<const char*, double> stages[] = {
-        {"sample", t.times.sample},         {"skin", t.times.skin},       {"place", t.times.place},
-        {"relevance", t.times.relevance},   {"refine", t.times.refine},   {"size", t.times.size},
-        {"silhouette", t.times.silhouette}, {"strokes", t.times.strokes}, {"draw", t.times.draw},
+        {"sample", t.times.sample},       {"skin", t.times.skin},
+        {"select", t.times.select},       {"place", t.times.place},
+        {"relevance", t.times.relevance}, {"refine", t.times.refine},
+        {"size", t.times.size},           {"silhouette", t.times.silhouette},
+        {"strokes", t.times.strokes},     {"draw", t.times.draw},
         {"readback", t.times.readback}};
     stipple::cli::Json per_stage;
     for (const auto& stage : stages) per_stage[stage.first] = fixed(stage.second / n, 3);
