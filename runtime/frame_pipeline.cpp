@@ -152,7 +152,7 @@ Status alloc_frame_buffers(Pipeline* p) {
         !alloc(&p->refined_triangle, budget) || !alloc(&p->refined_index, budget) ||
         !alloc(&p->triangle_front, asset.mesh.triangle_count) ||
         !alloc(&p->lines, size_t(asset.edges.edge_count) * 6) ||
-        (point_simd_detected() == PointSimd::avx2 && !alloc(&p->vertex_pairs, verts * 8)))
+        !alloc(&p->vertex_pairs, verts * 8))
         return make_status(StatusCode::out_of_memory, "out of memory for %zu points", capacity);
     if (asset.sides.triangle_double_sided) {  // runtime/double_sided.h: per-point flags, once
         if (!alloc(&p->point_double_sided, points))

@@ -57,6 +57,7 @@ void lod_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
     LodFrame frame;
     frame.vertex_positions = p->vertex_positions.get();
     frame.vertex_normals = p->vertex_normals.get();
+    frame.vertex_pairs = p->vertex_pairs.get();
     frame.params = &p->size_params;
     frame.viewport_width = p->viewport_width;
     frame.relevance_update = p->config.relevance_update;

@@ -12,6 +12,36 @@ glm::vec3 normal(const float* normals, uint32_t v) {
     return glm::vec3(n[0], n[1], n[2]);
 }
 
+// N.V at most for normals within angle acos(cos_t) of the unit `axis`, on points in the box.
+float cone_slope_bound(const glm::vec3& axis, float cos_t, const glm::vec3& lo, const glm::vec3& hi,
+                       const glm::vec3& eye) {
+    const glm::vec3 centre = 0.5f * (lo + hi), to_eye = eye - centre;
+    const float radius = 0.5f * glm::length(hi - lo), distance = glm::length(to_eye);
+    if (!(cos_t > 0.0f) || !(distance > radius * 1.01f)) return 1.0f;
+    const float angle =
+        std::acos(std::max(-1.0f, std::min(1.0f, glm::dot(axis, to_eye) / distance)));
+    const float spread = std::acos(std::min(cos_t, 1.0f)) + std::asin(radius / distance);
+    const float bound = angle > spread ? std::cos(angle - spread) : 1.0f;
+    return std::min(bound + 1e-3f, 1.0f);
+}
+
+constexpr uint32_t kAhead = 8;
+inline void prefetch(const float* p) {
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_prefetch(p);
+#else
+    (void)p;
+#endif
+}
+
+// lighting() at least, from each light's least N.L (<= 0 gives that light nothing).
+float lighting_from_least(const float* least, const SizeParams& params) {
+    float lit = params.ambient;
+    for (int l = 0; l < params.light_count; ++l)
+        lit += params.light_intensity[l] * std::max(least[l] - 1e-4f, 0.0f);
+    return std::min(lit, 1.0f);
+}
+
 }  // namespace
 
 float normal_cone_slope_bound(const float* normals, const uint32_t* vertices, uint32_t count,
@@ -31,14 +61,7 @@ float normal_cone_slope_bound(const float* normals, const uint32_t* vertices, ui
         const glm::vec3 n = normal(normals, vertices[j]);
         cos_t = std::min(cos_t, glm::dot(axis, n) / glm::length(n));
     }
-    const glm::vec3 centre = 0.5f * (lo + hi), to_eye = eye - centre;
-    const float radius = 0.5f * glm::length(hi - lo), distance = glm::length(to_eye);
-    if (!(cos_t > 0.0f) || !(distance > radius * 1.01f)) return 1.0f;
-    const float angle =
-        std::acos(std::max(-1.0f, std::min(1.0f, glm::dot(axis, to_eye) / distance)));
-    const float spread = std::acos(std::min(cos_t, 1.0f)) + std::asin(radius / distance);
-    const float bound = angle > spread ? std::cos(angle - spread) : 1.0f;
-    return std::min(bound + 1e-3f, 1.0f);
+    return cone_slope_bound(axis, cos_t, lo, hi, eye);
 }
 
 float least_lighting(const float* normals, const uint32_t* vertices, uint32_t count,
@@ -55,6 +78,59 @@ float least_lighting(const float* normals, const uint32_t* vertices, uint32_t co
         lit += params.light_intensity[l] * std::max(least - 1e-4f, 0.0f);
     }
     return std::min(lit, 1.0f);
+}
+
+void part_bounds(const float* pairs, const uint32_t* vertices, uint32_t count,
+                 const SizeParams& params, PartBounds* out) {
+    PartBounds b;
+    const int lights = params.light_count;
+    for (int l = 0; l < lights; ++l) b.least[l] = 1.0f;
+    for (uint32_t j = 0; j < count; ++j) {
+        // The vertices lie scattered over the mesh (the horse: 1.5 MB of pairs): fetch ahead.
+        if (j + kAhead < count) prefetch(pairs + size_t(vertices[j + kAhead]) * 8);
+        const float* v = pairs + size_t(vertices[j]) * 8;
+        const glm::vec3 p(v[0], v[1], v[2]), n(v[4], v[5], v[6]);
+        b.lo = glm::min(b.lo, p);
+        b.hi = glm::max(b.hi, p);
+        const float len = glm::length(n);
+        if (!(len > 0.0f)) {  // no direction: no cone, and no light it is sure to get
+            b.cone = false;
+            for (int l = 0; l < lights; ++l) b.least[l] = std::min(b.least[l], 0.0f);
+            continue;
+        }
+        const glm::vec3 u = n / len;
+        b.axis += u;
+        for (int l = 0; l < lights; ++l)
+            b.least[l] = std::min(b.least[l], glm::dot(n, params.light_direction[l]) / len);
+    }
+    *out = b;
+}
+
+float part_least_lighting(const PartBounds& b, const SizeParams& params) {
+    return lighting_from_least(b.least, params);
+}
+
+PartFacing part_facing(const float* pairs, const uint32_t* vertices, uint32_t count,
+                       const PartBounds& b, const glm::vec3& eye, bool cone_wanted) {
+    const float scale = glm::length(eye - 0.5f * (b.lo + b.hi)) + glm::length(b.hi - b.lo);
+    const float axis_len = glm::length(b.axis);
+    cone_wanted = cone_wanted && b.cone && axis_len > 0.0f;
+    const glm::vec3 axis = cone_wanted ? b.axis / axis_len : glm::vec3(0.0f);
+    PartFacing f;
+    float cos_t = 1.0f;
+    for (uint32_t j = 0; j < count; ++j) {
+        const float* v = pairs + size_t(vertices[j]) * 8;
+        const glm::vec3 n(v[4], v[5], v[6]);
+        const float len = glm::length(n);
+        if (f.away) {  // faces_away: n . (eye - the box corner nearest along n) < 0
+            const glm::vec3 nearest(n.x >= 0.0f ? b.lo.x : b.hi.x, n.y >= 0.0f ? b.lo.y : b.hi.y,
+                                    n.z >= 0.0f ? b.lo.z : b.hi.z);
+            f.away = glm::dot(n, eye - nearest) < -1e-5f * len * scale;
+        }
+        if (cone_wanted) cos_t = std::min(cos_t, glm::dot(axis, n) / len);
+    }
+    if (cone_wanted) f.slope = cone_slope_bound(axis, cos_t, b.lo, b.hi, eye);
+    return f;
 }
 
 InkBound::InkBound(const SizeParams& params) {

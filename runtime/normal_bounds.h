@@ -34,6 +34,31 @@ float normal_cone_slope_bound(const float* normals, const uint32_t* vertices, ui
 float least_lighting(const float* normals, const uint32_t* vertices, uint32_t count,
                      const SizeParams& params);
 
+// The same bounds in two passes over a part's vertices read as vertex pairs (x y z 0 nx ny nz
+// 0, runtime/point_simd.h's pair_vertices: one cache line per vertex for position and normal),
+// for the level of detail's clusters (runtime/point_clusters_select.cpp), with the box of the
+// positions taken in the first pass and the back-face test in the second.
+struct PartBounds {
+    glm::vec3 lo{1e30f}, hi{-1e30f};  // box of the positions
+    glm::vec3 axis{0.0f};             // sum of the unit normals (the cone's axis, not normalised)
+    bool cone = true;                 // every normal has a length
+    float least[kMaxLights] = {};     // per light: the least N.L of the unit normals (<= 1)
+};
+// Pass 1: box, axis and least N.L per light.
+void part_bounds(const float* pairs, const uint32_t* vertices, uint32_t count,
+                 const SizeParams& params, PartBounds* out);
+// least_lighting from pass 1.
+float part_least_lighting(const PartBounds& b, const SizeParams& params);
+// Pass 2: whether every normal faces away from every point of the box (the size rule's N.V < 0
+// for every point placed on the part; with faces_away's tolerance, runtime/point_clusters.h)
+// and, when `cone_wanted`, normal_cone_slope_bound from the axis of pass 1.
+struct PartFacing {
+    bool away = true;
+    float slope = 1.0f;
+};
+PartFacing part_facing(const float* pairs, const uint32_t* vertices, uint32_t count,
+                       const PartBounds& b, const glm::vec3& eye, bool cone_wanted);
+
 // The largest ink the size rule can ask for where lighting is at least `lit`.
 struct InkBound {
     float from[InkTable::kSteps + 2];

@@ -355,6 +355,7 @@ Status point_clusters_init(PointClusters* c, const Asset& a, const float* baked_
                     !alloc(&c->placed_bits, c->word_count)))
         st = make_status(StatusCode::out_of_memory, "out of memory for %u points", c->point_count);
     if (!st.ok()) return st;
+    std::fill(c->keep.get(), c->keep.get() + c->cluster_count, 0u);  // the first cut's hint
     c->stats.clusters = c->cluster_count;
     return {};
 }

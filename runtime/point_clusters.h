@@ -22,6 +22,7 @@
 // A kept point's relevance reads its relevant neighbours' positions, so they are placed too
 // (the closure), whether their own cluster was cut or culled. Points not run keep size 0.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 
 #include "runtime/asset.h"
@@ -111,7 +112,8 @@ inline bool bind_area_defined(const float* gram) {
 struct LodFrame {
     const float* vertex_positions = nullptr;  // posed mesh, 3 per vertex
     const float* vertex_normals = nullptr;
-    const SizeParams* params = nullptr;  // camera, tone, dot size of this frame
+    const float* vertex_pairs = nullptr;  // the same as runtime/point_simd.h's pair_vertices
+    const SizeParams* params = nullptr;   // camera, tone, dot size of this frame
     int viewport_width = 0;
     bool relevance_update = true;  // Alg. 6.4 on: radii follow the stretch
     // Points from this index on are sized even outside the frustum (where their dots are not
@@ -130,6 +132,27 @@ void point_clusters_select(PointClusters* c, const Asset& asset, const LodFrame&
 // Deforming clusters: each triangle's squared stretches (area_ratio, edge_ratio) from the bind
 // pose to `posed` (3 floats per vertex of m, the asset's mesh); point_clusters_select runs it.
 void point_clusters_stretch(PointClusters* c, const MeshView& m, const float* posed);
+
+// std::partition_point's index over a[0 .. n) for a predicate true on a prefix, searched
+// outward from `hint` in doubling steps: the cut moves little from frame to frame, so a few
+// probes near last frame's cut replace a binary search's cache misses over the whole range.
+template <typename Pred>
+inline uint32_t partition_from(const float* a, uint32_t n, uint32_t hint, Pred pred) {
+    hint = std::min(hint, n);
+    uint32_t lo = 0, hi = n;          // the index lies in [lo, hi]; a[hi] fails when hi < n
+    if (hint < n && pred(a[hint])) {  // past the hint: a[lo - 1] passes
+        lo = hint + 1;
+        uint32_t step = 1;
+        while (lo + step - 1 < n && pred(a[lo + step - 1])) lo += step, step *= 2;
+        hi = std::min(lo + step - 1, n);
+    } else {  // at or before it
+        hi = hint;
+        uint32_t step = 1;
+        while (hi >= step && !pred(a[hi - step])) hi -= step, step *= 2;
+        lo = hi >= step ? hi - step + 1 : 0;
+    }
+    return lo + uint32_t(std::partition_point(a + lo, a + hi, pred) - (a + lo));
+}
 
 // Sets size[i] = 0 for the points the last selection ran (before a new selection).
 void point_clusters_clear_sizes(const PointClusters& c, float* size);

@@ -24,16 +24,6 @@ struct Box {
     glm::vec3 lo, hi;
 };
 
-Box cluster_box(const PointClusters& c, uint32_t k, const float* positions) {
-    Box b{glm::vec3(1e30f), glm::vec3(-1e30f)};
-    for (uint32_t j = c.vertex_begin[k]; j < c.vertex_begin[k + 1]; ++j) {
-        const glm::vec3 v = glm::make_vec3(vertex(positions, c.vertices[j]));
-        b.lo = glm::min(b.lo, v);
-        b.hi = glm::max(b.hi, v);
-    }
-    return b;
-}
-
 // The box's 8 corners in clip space: outside when all lie beyond one plane. The renderer
 // drops a dot whose centre falls outside the image or the depth range (runtime/renderer.cpp),
 // so x and y get one pixel of margin for rounding and z none. Also the smallest clip w.
@@ -53,39 +43,14 @@ bool outside_frustum(const Box& b, const glm::mat4& vp, const glm::vec2& margin,
     return all != 0;
 }
 
-// Every vertex normal n of the cluster faces away from every point p of its box:
-// n . (eye - p) < 0. A placed point's normal blends these with weights >= 0 (Gouraud), so it
-// faces away too and the size rule gives it size 0.
-bool faces_away(const PointClusters& c, uint32_t k, const Box& b, const float* normals,
-                const glm::vec3& eye) {
-    const float scale = glm::length(eye - 0.5f * (b.lo + b.hi)) + glm::length(b.hi - b.lo);
-    for (uint32_t j = c.vertex_begin[k]; j < c.vertex_begin[k + 1]; ++j) {
-        const glm::vec3 n = glm::make_vec3(vertex(normals, c.vertices[j]));
-        const glm::vec3 nearest(n.x >= 0.0f ? b.lo.x : b.hi.x, n.y >= 0.0f ? b.lo.y : b.hi.y,
-                                n.z >= 0.0f ? b.lo.z : b.hi.z);
-        if (glm::dot(n, eye - nearest) >= -1e-5f * glm::length(n) * scale) return false;
-    }
-    return true;
-}
-
-// The slope bound (runtime/normal_bounds.h) of cluster k's points: 1 unless single-sided.
-float slope_bound(const PointClusters& c, uint32_t k, const Box& b, const float* normals,
-                  const glm::vec3& eye) {
-    if (!c.single_sided[k]) return 1.0f;
-    const uint32_t first = c.vertex_begin[k];
-    return normal_cone_slope_bound(normals, c.vertices.get() + first, c.vertex_begin[k + 1] - first,
-                                   b.lo, b.hi, eye);
-}
-
 // Points of cluster k whose radius bound times `stretch` passes `threshold`: the bounds are
-// non-increasing along the cluster, so the kept points are a prefix.
+// non-increasing along the cluster, so the kept points are a prefix (searched from last
+// frame's keep).
 uint32_t cut_length(const PointClusters& c, uint32_t k, const float* bound, float stretch,
                     float threshold) {
-    const float* first = bound + c.point_begin[k];
-    const float* last = bound + c.point_begin[k + 1];
-    const float* cut =
-        std::partition_point(first, last, [&](float r) { return r * stretch > threshold; });
-    return uint32_t(cut - first);
+    const uint32_t first = c.point_begin[k], n = c.point_begin[k + 1] - first;
+    return partition_from(bound + first, n, c.keep[k],
+                          [&](float r) { return r * stretch > threshold; });
 }
 
 // The largest stretch over the triangles cluster k's points and neighbours lie on, at least 1
@@ -119,15 +84,6 @@ Stretch cluster_stretches(const PointClusters& c, uint32_t k) {
     const float area = std::max(std::sqrt(std::sqrt(largest(begin, split, c.area_ratio.get()))),
                                 std::sqrt(largest(split, end, edge_ratio)));
     return {area * kAreaMargin, edges * 1.02f};
-}
-
-// The least lighting at any point of cluster k (runtime/normal_bounds.h): 0 for clusters with
-// double-sided triangles (their normals turn toward the eye).
-float least_lighting(const PointClusters& c, uint32_t k, const float* normals,
-                     const SizeParams& params) {
-    if (!c.single_sided[k]) return 0.0f;
-    const uint32_t first = c.vertex_begin[k];
-    return least_lighting(normals, c.vertices.get() + first, c.vertex_begin[k + 1] - first, params);
 }
 
 // Radius (object units) per unit of clip w below which the size rule gives size 0 for ink at
@@ -182,13 +138,24 @@ uint32_t cluster_keep(PointClusters* c, uint32_t k, const LodFrame& f, bool stre
     const SizeParams& params = *f.params;
     const glm::vec2 margin(2.0f / float(std::max(f.viewport_width, 1)),
                            2.0f / std::max(params.viewport_height, 1.0f));
-    const Box b = cluster_box(*c, k, f.vertex_positions);
+    // The cluster's vertices in two passes (runtime/normal_bounds.h): box, cone axis and least
+    // lighting, then the back-face test and the cone's slope bound (single-sided clusters).
+    const uint32_t* vertices = c->vertices.get() + c->vertex_begin[k];
+    const uint32_t vertex_count = c->vertex_begin[k + 1] - c->vertex_begin[k];
+    PartBounds part;
+    part_bounds(f.vertex_pairs, vertices, vertex_count, params, &part);
+    const Box b{part.lo, part.hi};
     float w_min;
     const bool outside = outside_frustum(b, params.view_projection, margin, &w_min);
     *kind = 0;
-    if (c->single_sided[k] && faces_away(*c, k, b, f.vertex_normals, params.eye)) {
-        *kind = kKindBack;
-        return 0;
+    const bool single = c->single_sided[k] != 0;
+    PartFacing facing;
+    if (single) {
+        facing = part_facing(f.vertex_pairs, vertices, vertex_count, part, params.eye, true);
+        if (facing.away) {
+            *kind = kKindBack;
+            return 0;
+        }
     }
     const uint32_t total = c->point_begin[k + 1] - c->point_begin[k];
     if (outside && !cut_reaches(*c, k, total, f.size_from)) {
@@ -197,8 +164,9 @@ uint32_t cluster_keep(PointClusters* c, uint32_t k, const LodFrame& f, bool stre
     }
     if (!(w_min > 0.0f)) return total;
     const Stretch st = stretches ? cluster_stretches(*c, k) : Stretch{1.0f, 1.0f};
-    const float lit = least_lighting(*c, k, f.vertex_normals, params);
-    const float slope = slope_bound(*c, k, b, f.vertex_normals, params.eye);
+    // Double-sided clusters: normals that turn toward the eye, no bound (normal_bounds.h).
+    const float lit = single ? part_least_lighting(part, params) : 0.0f;
+    const float slope = single ? facing.slope : 1.0f;
     const float threshold = cut_per_w(params, focal, ink.at(lit)) * w_min / std::sqrt(slope);
     uint32_t keep;
     if (!f.relevance_update)  // the rest-pose radii as they are

@@ -47,10 +47,8 @@ const char* point_simd_name(PointSimd simd) {
 void pair_vertices(uint32_t count, const float* positions, const float* normals, float* out) {
     for (uint32_t v = 0; v < count; ++v) {
         float* o = out + size_t(v) * 8;
-        for (int k = 0; k < 3; ++k) {
-            o[k] = positions[size_t(v) * 3 + k];
-            o[4 + k] = normals[size_t(v) * 3 + k];
-        }
+        std::memcpy(o, positions + size_t(v) * 3, 12);
+        std::memcpy(o + 4, normals + size_t(v) * 3, 12);
         o[3] = o[7] = 0.0f;
     }
 }

@@ -83,7 +83,7 @@ PointStageFrame point_stage_frame(Pipeline* p) {
 }
 
 void point_stage_pair_vertices(Pipeline* p) {
-    if (point_simd() != PointSimd::avx2 || !p->vertex_pairs) return;
+    if (!p->vertex_pairs) return;
     pair_vertices(p->asset->mesh.vertex_count, p->vertex_positions.get(), p->vertex_normals.get(),
                   p->vertex_pairs.get());
 }

@@ -35,8 +35,8 @@ struct Pipeline;  // runtime/frame_pipeline.h
 // The pipeline's buffers for this frame's stages (the baked points' part of them).
 PointStageFrame point_stage_frame(Pipeline* p);
 
-// Fills the pipeline's vertex_pairs from the posed mesh when place runs on the AVX2 path (one
-// pass over the vertices; the frame's point stages call it once, before any place).
+// Fills the pipeline's vertex_pairs from the posed mesh (one pass over the vertices; the
+// frame's point stages call it once, before the selection and any place).
 void point_stage_pair_vertices(Pipeline* p);
 
 // Below this many points per thread a stage runs on the caller alone.

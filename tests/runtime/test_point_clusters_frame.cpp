@@ -8,6 +8,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -152,6 +153,25 @@ TEST(PointClustersStretch, SimdKernelMatchesTheScalarCodeOnEdgeCases) {
         stipple::point_simd_force(stipple::point_simd_detected());
         EXPECT_TRUE(same_bytes(out[0][0], out[1][0])) << "area, variant " << variant;
         EXPECT_TRUE(same_bytes(out[0][1], out[1][1])) << "edges, variant " << variant;
+    }
+}
+
+// The cut searched from last frame's (partition_from) is std::partition_point's, from any hint
+// and on any prefix length, including empty ranges and hints past the end.
+TEST(PointClustersCut, SearchFromAHintIsThePartitionPoint) {
+    std::mt19937 rng(7);
+    for (int trial = 0; trial < 4000; ++trial) {
+        const uint32_t n = rng() % 300;
+        std::vector<float> bound(n);
+        float r = 1.0f + float(rng() % 100);
+        for (float& b : bound) b = r -= float(rng() % 3) * 0.01f;  // non-increasing, with ties
+        const float threshold = n ? bound[rng() % n] + float(int(rng() % 3) - 1) * 0.005f : 1.0f;
+        const auto pred = [&](float x) { return x > threshold; };
+        const uint32_t want =
+            uint32_t(std::partition_point(bound.begin(), bound.end(), pred) - bound.begin());
+        const uint32_t hint = rng() % (n + 8);
+        ASSERT_EQ(stipple::partition_from(bound.data(), n, hint, pred), want)
+            << "n " << n << ", hint " << hint;
     }
 }
 
