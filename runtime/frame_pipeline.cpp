@@ -386,9 +386,9 @@ void draw_ink(Pipeline* p, bool lines) {
 // driver fills the depth while this thread runs the point stages (on llvmpipe the rasterizer
 // threads; the dots pass, whose vertex shader reads that depth, would otherwise wait for it
 // with nothing to do). With a worker in the pool (FrameConfig::threads > 1) the point part
-// runs on it from before the mesh pass is submitted: llvmpipe shades and bins the mesh on this
-// thread, inside glDrawElements (7 ms of the horse's 97k triangles), and the point stages
-// take the other core meanwhile. The GL commands and their order are those of pipeline_update
+// runs on it from as soon as the mesh is posed, beside the facing and silhouette stages and
+// the mesh pass: llvmpipe shades and bins the mesh on this thread, inside glDrawElements (7 ms
+// of the horse's 97k triangles), and the point stages take the other core meanwhile. The GL commands and their order are those of pipeline_update
 // followed by the passes, and the stages' bytes do not depend on the thread that runs them:
 // the picture is the same.
 void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
@@ -400,12 +400,10 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
     const bool early_lines = !gpu && !p->strokes.enabled;
     if (gpu) pipeline_update(p, state, t);
     Clock::time_point clock = Clock::now();
-    if (!gpu) {
-        pose_mesh(p, state, t, &clock);
-        line_stages(p, t, &clock);
-    }
-    // The point part runs beside the mesh pass when the pool has a worker (the frame's GL
-    // calls stay on this thread, the pool is the task's until it is finished).
+    if (!gpu) pose_mesh(p, state, t, &clock);
+    // The point part runs beside the line stages and the mesh pass when the pool has a worker
+    // (it reads only the posed mesh; the frame's GL calls stay on this thread, and the pool is
+    // the task's until it is finished).
     const bool beside = !gpu && p->pool.threads > 1;
     ThreadPool pool = p->pool;
     StageTimes worker_times;
@@ -414,6 +412,7 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
         p->pool = ThreadPool();
         thread_pool_begin(&pool, 1, point_part_task, &task);
     }
+    if (!gpu) line_stages(p, t, &clock);
     renderer_draw_fill(&p->renderer, p->view_projection, p->vertex_positions.get(),
                        p->vertex_normals.get(), p->asset->mesh.vertex_count);
     if (early_lines) draw_lines(p);
