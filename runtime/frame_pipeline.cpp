@@ -388,9 +388,9 @@ void draw_ink(Pipeline* p, bool lines) {
 // with nothing to do). With a worker in the pool (FrameConfig::threads > 1) the point part
 // runs on it from as soon as the mesh is posed, beside the facing and silhouette stages and
 // the mesh pass: llvmpipe shades and bins the mesh on this thread, inside glDrawElements (7 ms
-// of the horse's 97k triangles), and the point stages take the other core meanwhile. The GL commands and their order are those of pipeline_update
-// followed by the passes, and the stages' bytes do not depend on the thread that runs them:
-// the picture is the same.
+// of the horse's 97k triangles), and the point stages take the other core meanwhile. The GL
+// commands and their order are those of pipeline_update followed by the passes, and the stages'
+// bytes do not depend on the thread that runs them: the picture is the same.
 void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
     if (p->particles.enabled) {  // GI'01 strokes instead of stipples
         pipeline_particle_frame(p, &p->particles, state, t);
