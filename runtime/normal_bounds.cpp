@@ -66,18 +66,17 @@ float normal_cone_slope_bound(const float* normals, const uint32_t* vertices, ui
 
 float least_lighting(const float* normals, const uint32_t* vertices, uint32_t count,
                      const SizeParams& params) {
-    float lit = params.ambient;
+    float least[kMaxLights];
     for (int l = 0; l < params.light_count; ++l) {
-        float least = 1.0f;
-        for (uint32_t j = 0; j < count && least > 0.0f; ++j) {
+        least[l] = 1.0f;
+        for (uint32_t j = 0; j < count && least[l] > 0.0f; ++j) {
             const glm::vec3 n = normal(normals, vertices[j]);
             const float len = glm::length(n);
-            least =
-                len > 0.0f ? std::min(least, glm::dot(n, params.light_direction[l]) / len) : 0.0f;
+            least[l] = len > 0.0f ? std::min(least[l], glm::dot(n, params.light_direction[l]) / len)
+                                  : 0.0f;
         }
-        lit += params.light_intensity[l] * std::max(least - 1e-4f, 0.0f);
     }
-    return std::min(lit, 1.0f);
+    return lighting_from_least(least, params);
 }
 
 void part_bounds(const float* pairs, const uint32_t* vertices, uint32_t count,

@@ -1,14 +1,13 @@
 // AVX2 variants of the CPU point stages (runtime/point_simd.h): size and relevance 8 points
 // per step (scattered points loaded one by one and transposed: AVX2 gathers measured twice as
-// slow per element on this Zen 5), place one point per step with x, y, z in the lanes of a
-// vector. Each
-// kernel mirrors its scalar original operation by operation: same products, sums in the same
-// order, sqrt and divide (no rsqrt/rcp), the scalar code's comparisons and clamps as blends
-// with the same NaN behaviour, no FMA (the target is avx2 alone and this file is built with
-// -ffp-contract=off), so every lane gives the bits the scalar code gives.
-// Every header is included before the target pragma, and only intrinsics and this file's own
-// internal functions run under it, so no inline function shared with other files is compiled
-// for AVX2 (which the linker could pick for the baseline callers too).
+// slow per element on this Zen 5), place one point per step with its position and normal in
+// the lanes of one vector (runtime/point_simd.h's vertex pairs). Each kernel mirrors its scalar
+// original operation by operation: same products, sums in the same order, sqrt and divide (no
+// rsqrt/rcp), the scalar code's comparisons and clamps as blends with the same NaN behaviour, no
+// FMA (the target is avx2 alone and this file is built with -ffp-contract=off), so every lane gives
+// the bits the scalar code gives. Every header is included before the target pragma, and only
+// intrinsics and this file's own internal functions run under it, so no inline function shared with
+// other files is compiled for AVX2 (which the linker could pick for the baseline callers too).
 #include <cstddef>
 #include <cstdint>
 
@@ -251,7 +250,7 @@ namespace {
 // Points are stored coarse to fine, so consecutive points lie far apart on the surface and a
 // large mesh (the horse: 48k vertices, 97k triangles) misses the cache on every host triangle
 // and vertex. Prefetching a few points ahead overlaps those misses: the host triangle's
-// indices kFar points ahead, its vertices kNear points ahead (their indices arrived by then).
+// indices kFar points ahead, its vertex pairs kNear points ahead (their indices arrived by then).
 // (Measured: the horse's place 1.5x faster; CesiumMan's, whose 3k vertices stay cached, ~10%
 // slower. Prefetching relevance's neighbour positions the same way cost CesiumMan 20%.)
 constexpr uint32_t kNear = 8, kFar = 16;
