@@ -95,8 +95,7 @@ std::string render_usage() {
            "6.4)\n"
            "  --no-lod                run place, relevance and size on every point (default: only\n"
            "                          clusters in view, cut where no dot can draw; docs/lod.md)\n"
-           "  --threads N             threads for the point stages: with 2 or more they run on a\n"
-           "                          worker beside the mesh pass (docs/performance.md),\n"
+           "  --threads N             point stages on a worker beside the mesh pass from 2 on,\n"
            "                          byte-identical output (default " +
            std::to_string(defaults().threads) + ", 0 = the hardware's up to " +
            std::to_string(stipple::kMaxAutoThreads) + ", max " +
