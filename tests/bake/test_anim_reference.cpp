@@ -38,7 +38,7 @@
 #include "bake/scene_import.h"
 #include "runtime/asset.h"
 #include "tests/common/bake_result.h"
-#include "tests/common/temp_file.h"
+#include "tests/common/scratch.h"
 
 namespace {
 
@@ -604,13 +604,11 @@ struct GltfBuilder {
         return a;
     }
     std::string write(const std::string& name) {
-        const std::string dir = ::testing::TempDir();
-        const std::string bin_name = "stipple_" + std::to_string(::getpid()) + "_" + name + ".bin";
+        const std::string bin_name = name + ".bin";  // the .gltf's relative uri
         doc["buffers"] = {{{"uri", bin_name}, {"byteLength", bin.size()}}};
-        std::ofstream(dir + bin_name, std::ios::binary)
+        std::ofstream(stipple::test::scratch_path(bin_name), std::ios::binary)
             .write(reinterpret_cast<const char*>(bin.data()), std::streamsize(bin.size()));
-        const std::string path =
-            dir + "stipple_" + std::to_string(::getpid()) + "_" + name + ".gltf";
+        const std::string path = stipple::test::scratch_path(name + ".gltf");
         std::ofstream(path) << doc.dump(1);
         return path;
     }

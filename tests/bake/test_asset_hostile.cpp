@@ -23,6 +23,7 @@
 #include "runtime/asset_limits.h"
 #include "runtime/stipple.h"
 #include "tests/common/gltf_writer.h"
+#include "tests/common/scratch.h"
 
 namespace {
 
@@ -362,9 +363,7 @@ TEST(AssetHostile, ImporterAndLoaderShareTheJointLimit) {
     bin.put<float>({0, 0, 0, 1, 0, 0, 0, 1, 0});
     bin.put<uint16_t>({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
     bin.put<float>({1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0});
-    const std::string path = (std::filesystem::temp_directory_path() /
-                              ("stipple_joint_limit_" + std::to_string(getpid()) + ".gltf"))
-                                 .string();
+    const std::string path = test::scratch_path("joint_limit.gltf");
     test::write_gltf(path,
                      R"({
       "asset": {"version": "2.0"},

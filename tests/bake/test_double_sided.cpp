@@ -104,8 +104,7 @@ TEST(DoubleSided, GltfMaterialDoubleSidedIsImportedPerTriangle) {
     test::GltfBin bin;
     bin.put<float>({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0});
     bin.put<uint16_t>({0, 1, 2, 1, 3, 2});
-    const std::string path =
-        ::testing::TempDir() + "stipple_double_sided_" + std::to_string(getpid()) + ".gltf";
+    const std::string path = test::scratch_path("double_sided.gltf");
     test::write_gltf(path, R"({
       "asset": {"version": "2.0"},
       "scene": 0, "scenes": [{"nodes": [0]}],

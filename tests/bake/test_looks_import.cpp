@@ -14,14 +14,14 @@
 #include "bake/surface_looks.h"
 #include "runtime/asset_format.h"
 #include "tests/common/gltf_writer.h"
-#include "tests/common/temp_file.h"
+#include "tests/common/scratch.h"
 
 namespace {
 
 using namespace stipple;
 
 std::string temp_path(const std::string& name) {
-    return stipple::test::temp_file("looks_" + name);
+    return stipple::test::scratch_path("looks_" + name);
 }
 
 // A 64 x 64 texture of 8 x 8 squares, 8 texels each: black where (column + row) is even.

@@ -19,7 +19,7 @@ using namespace stipple;
 using test::write_running_cube;
 
 std::string temp(const char* name) {
-    return ::testing::TempDir() + "stipple_framing_" + std::to_string(getpid()) + "_" + name;
+    return test::scratch_path(std::string("framing_") + name);
 }
 
 TEST(Framing, ClipBoundsCoverEveryPoseOfTheClip) {

@@ -15,7 +15,7 @@
 #include "bake/scene_import.h"
 #include "tests/common/bake_result.h"
 #include "tests/common/gltf_writer.h"
-#include "tests/common/temp_file.h"
+#include "tests/common/scratch.h"
 
 namespace stipple::bake {
 namespace {
@@ -23,7 +23,7 @@ namespace {
 const char* const kCesiumMan = STIPPLE_SOURCE_DIR "/assets/CesiumMan/CesiumMan.glb";
 
 std::string temp_path(const std::string& name) {
-    return stipple::test::temp_file(name);
+    return stipple::test::scratch_path(name);
 }
 
 std::string write_file(const std::string& name, const std::string& content) {

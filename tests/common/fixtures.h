@@ -2,8 +2,9 @@
 //   paths        source(), bin(), play_checked() (stipple-play --check-gl), and the assets
 //                baked once per ctest run (baked_asset());
 //   processes    run() a built CLI and capture its output;
-//   scratch      ScratchDir, a fresh directory per test (per process: ctest runs tests in
-//                parallel processes), removed afterwards;
+//   scratch      scratch_path(), a file in the process's scratch directory (removed at exit,
+//                tests/common/scratch.h); ScratchDir, a fresh directory per test in it,
+//                removed afterwards;
 //   frames       Image / load_png, the paper-frame silhouette, mean darkness, dot lists;
 //   GL           HeadlessGl, a headless context with the GL API loaded (link stipple_platform
 //                and stipple_runtime to use it);
@@ -28,6 +29,7 @@
 #include "platform/headless_context.h"
 #include "runtime/asset.h"
 #include "runtime/gl_api.h"
+#include "tests/common/scratch.h"
 
 namespace stipple::test {
 
@@ -114,10 +116,7 @@ inline std::string baked_asset(const std::string& input, const std::string& opti
 // normally (a crash). Its stdout and stderr go to `log` if given.
 inline int run(const std::string& command, std::string* log = nullptr) {
     static std::atomic<int> counter{0};
-    const std::string log_path =
-        (std::filesystem::temp_directory_path() / ("stipple_test_cmd_" + std::to_string(getpid()) +
-                                                   "_" + std::to_string(counter++) + ".log"))
-            .string();
+    const std::string log_path = scratch_path("cmd_" + std::to_string(counter++) + ".log");
     const std::string full = command + " > '" + log_path + "' 2>&1";
     const int status = std::system(full.c_str());
     if (log) {
@@ -133,18 +132,19 @@ inline int run(const std::string& command, std::string* log = nullptr) {
 // ---------------------------------------------------------------------------------------
 // Scratch directories
 
-// A fresh directory for the current test (named after it and the process), removed when it
-// goes out of scope. Construct it inside a test (or SetUpTestSuite, with a `tag`).
+// A fresh directory for the current test (named after it) in the process's scratch
+// directory, removed when it goes out of scope. Construct it inside a test (or
+// SetUpTestSuite, with a `tag`).
 class ScratchDir {
   public:
     explicit ScratchDir(const std::string& tag = "") {
-        std::string name = "stipple_";
+        std::string name = "dir";
         if (const auto* info = ::testing::UnitTest::GetInstance()->current_test_info())
-            name += std::string(info->test_suite_name()) + "_" + info->name() + "_";
-        name += tag + (tag.empty() ? "" : "_") + std::to_string(::getpid());
+            name += std::string("_") + info->test_suite_name() + "_" + info->name();
+        if (!tag.empty()) name += "_" + tag;
         for (char& c : name)
             if (c == '/') c = '_';  // parameterised test names
-        path_ = std::filesystem::temp_directory_path() / name;
+        path_ = scratch_path(name);
         std::filesystem::remove_all(path_);
         std::filesystem::create_directories(path_);
         str_ = path_.string();

@@ -18,7 +18,7 @@ class DoubleSidedFrames : public ::testing::Test {
   protected:
     static std::string dir;
     static void SetUpTestSuite() {
-        dir = ::testing::TempDir() + "stipple_double_sided_" + std::to_string(getpid());
+        dir = test::scratch_path("double_sided");
         test::run("rm -rf " + dir + " && mkdir -p " + dir);
         const std::string on = test::baked_asset("assets/SimpleSkin/SimpleSkin.gltf",
                                                  "--points 20000 --double-sided on");

@@ -20,8 +20,7 @@ class FrameChecks : public ::testing::Test {
     static void TearDownTestSuite() { run("rm -rf " + dir); }
 
     static void SetUpTestSuite() {
-        // Per process: ctest runs each test in its own process, possibly in parallel.
-        dir = ::testing::TempDir() + "stipple_frame_checks_" + std::to_string(getpid());
+        dir = scratch_path("frame_checks");
         run("rm -rf " + dir + " && mkdir -p " + dir);
         // The assets are baked once per ctest run (tests/test_assets.txt).
         const std::string cesium = baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 60000");

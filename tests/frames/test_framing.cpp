@@ -20,7 +20,7 @@ class FramingFrames : public ::testing::Test {
   protected:
     static std::string dir;
     static void SetUpTestSuite() {
-        dir = ::testing::TempDir() + "stipple_framing_" + std::to_string(getpid());
+        dir = test::scratch_path("framing");
         test::run("rm -rf " + dir + " && mkdir -p " + dir);
         write_running_cube(dir + "/cube.gltf");
         ASSERT_EQ(test::run(test::bin("stipple-bake") + " " + dir + "/cube.gltf -o " + dir +

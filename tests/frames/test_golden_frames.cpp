@@ -1,8 +1,9 @@
 // Golden-image frame checks: the frames of tests/golden/cases.txt, rendered headless, must
 // match the blessed PNGs within the stated tolerance (per channel 8/255, 1-pixel shift
 // forgiven, at most 0.5% of pixels failing). A failure writes the actual frame and a diff
-// image next to the test's temporary files. Re-bless with scripts/bless-goldens.sh. The
-// assets are baked once per ctest run (bake_test_assets.golden_<name>). One test per case
+// image into the process's scratch directory, which a failed run keeps
+// (tests/common/scratch.h). Re-bless with scripts/bless-goldens.sh. The assets are baked
+// once per ctest run (bake_test_assets.golden_<name>). One test per case
 // (Cases/GoldenFrame.MatchesBlessedImage/<name>), so ctest -j spreads them over its jobs.
 #include <gtest/gtest.h>
 
@@ -59,8 +60,7 @@ TEST_P(GoldenFrame, MatchesBlessedImage) {
     const std::string asset = baked_asset(c.input, c.bake);
     ASSERT_FALSE(asset.empty()) << c.name;
     // Kept after a failure: the actual frame and the diff.
-    const std::string out =
-        ::testing::TempDir() + "golden_" + std::to_string(getpid()) + "/" + c.name;
+    const std::string out = scratch_path("golden/" + c.name);
     ASSERT_EQ(run("rm -rf " + out + " && mkdir -p " + out), 0);
     ASSERT_EQ(
         run(play_checked() + " " + asset + " --out " + out + " --frames 1 --no-apng " + c.play), 0);

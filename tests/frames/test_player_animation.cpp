@@ -25,7 +25,7 @@ class PlayerAnimation : public ::testing::Test {
   protected:
     static std::string dir;
     static void SetUpTestSuite() {
-        dir = ::testing::TempDir() + "player_anim_" + std::to_string(getpid());
+        dir = scratch_path("player_anim");
         run("rm -rf " + dir + " && mkdir -p " + dir);
         const std::string tube =
             baked_asset("assets/stretch_tube/stretch_tube.gltf", "--points 5000");

@@ -10,9 +10,8 @@ namespace {
 
 using namespace stipple::test;
 
-// Per process: the tool tests run in parallel processes.
 std::string temp(const char* name) {
-    return ::testing::TempDir() + "stipple_cli_" + std::to_string(getpid()) + "_" + name;
+    return scratch_path(std::string("cli_") + name);
 }
 
 void write_file(const std::string& path, const std::string& text) {

@@ -9,7 +9,6 @@
 #include <random>
 
 #include "tests/common/fixtures.h"
-#include "tests/common/temp_file.h"
 #include "tools/frame_measure.h"
 #include "tools/image_write.h"
 
@@ -193,7 +192,7 @@ TEST(FrameMeasure, MaskFromPaperFrameAndMaskPng) {
             if (x == 0 && y == 29) p[0] = p[1] = p[2] = 252;           // 0.988: outside
             if (x == 1 && y == 29) p[0] = p[1] = p[2] = 253;           // 0.992: inside
         }
-    const std::string path = stipple::test::temp_file("measure_paper.png");
+    const std::string path = stipple::test::scratch_path("measure_paper.png");
     std::string error;
     ASSERT_TRUE(stipple::image::write_png(path.c_str(), w, h, rgba.data(), false, &error)) << error;
     m::Mask mask;
@@ -208,7 +207,7 @@ TEST(FrameMeasure, MaskFromPaperFrameAndMaskPng) {
     EXPECT_FALSE(mask.at(10, 5));
     EXPECT_FALSE(mask.at(0, 29));
     EXPECT_TRUE(mask.at(1, 29));
-    EXPECT_FALSE(m::load_mask_png(::testing::TempDir() + "no_such_mask.png", &mask, &error));
+    EXPECT_FALSE(m::load_mask_png(stipple::test::scratch_path("no_such_mask.png"), &mask, &error));
     EXPECT_NE(error.find("no_such_mask.png"), std::string::npos);
 }
 
@@ -344,7 +343,7 @@ void write_text(const std::string& path, const std::string& text) {
 }
 
 TEST(FrameMeasure, LoadsDotsCsvWith64BitIds) {
-    const std::string path = stipple::test::temp_file("measure_dots.csv");
+    const std::string path = stipple::test::scratch_path("measure_dots.csv");
     write_text(path, "id,x,y,size\r\n3,1.50,2.25,3.000\r\n\r\n4294967301,10,20,0.5\n");
     std::vector<m::Dot> dots;
     std::string error;
@@ -365,7 +364,7 @@ TEST(FrameMeasure, LoadsDotsCsvWith64BitIds) {
     EXPECT_FALSE(m::load_dots_csv(path, &dots, &error));
     write_text(path, "");
     EXPECT_FALSE(m::load_dots_csv(path, &dots, &error));
-    EXPECT_FALSE(m::load_dots_csv(::testing::TempDir() + "no_such_dots.csv", &dots, &error));
+    EXPECT_FALSE(m::load_dots_csv(stipple::test::scratch_path("no_such_dots.csv"), &dots, &error));
     EXPECT_NE(error.find("no_such_dots.csv"), std::string::npos);
 }
 

@@ -25,8 +25,7 @@ void write_text(const std::string& path, const std::string& text) {
 // A directory of two 64x48 frames with masks and dots; the directory name holds a quote and
 // a backslash, which the JSON output must escape.
 std::string make_frames_dir(const std::string& test) {
-    // One directory per test: ctest runs tests in parallel processes.
-    const std::string dir = ::testing::TempDir() + "measure \"q\\ dir " + test;
+    const std::string dir = stipple::test::scratch_path("measure \"q\\ dir " + test);
     run("rm -rf '" + dir + "' && mkdir -p '" + dir + "'");
     const int w = 64, h = 48;
     std::vector<uint8_t> frame(size_t(w) * h * 4, 255), mask(size_t(w) * h * 4, 0);
