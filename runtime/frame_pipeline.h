@@ -69,8 +69,11 @@ struct Pipeline {
     uint32_t point_capacity = 0;
     Buffer<float> point_positions, point_normals;  // 3 * capacity
     Buffer<float> radius_scale;                    // point_count, see relevance_scale()
-    Buffer<float> draw_positions, draw_sizes;      // the dots with a size, compacted
-    Buffer<float> rest_radius;                     // point_count
+    // 4 per baked point when every list holds at most 4 (runtime/point_simd.h's
+    // quad_neighbours; AVX2 relevance reads them), else null.
+    Buffer<uint32_t> neighbour_quads;
+    Buffer<float> draw_positions, draw_sizes;  // the dots with a size, compacted
+    Buffer<float> rest_radius;                 // point_count
     // The baked radii, the coarse ranks' following their prefix's surface density
     // (runtime/region_density.h): what every stipple stage reads instead of the asset's.
     Buffer<float> baked_radius;  // point_count

@@ -53,6 +53,16 @@ void pair_vertices(uint32_t count, const float* positions, const float* normals,
     }
 }
 
+bool quad_neighbours(const PointsView& points, uint32_t* out) {
+    for (uint32_t i = 0; i < points.point_count; ++i) {
+        const uint32_t begin = points.neighbour_offsets[i], end = points.neighbour_offsets[i + 1];
+        if (end - begin > 4) return false;
+        uint32_t* o = out + size_t(i) * 4;
+        for (uint32_t k = 0; k < 4; ++k) o[k] = begin + k < end ? points.neighbours[begin + k] : i;
+    }
+    return true;
+}
+
 SizeKernelFrame::SizeKernelFrame(const SizeParams& p)
     : params(&p),
       row_w{p.view_projection[0][3], p.view_projection[1][3], p.view_projection[2][3],
@@ -64,8 +74,8 @@ SizeKernelFrame::SizeKernelFrame(const SizeParams& p)
 // No AVX2 anywhere else: point_simd() is never avx2 there, so these are never called.
 void place_points_avx2(const PointsView&, const uint32_t*, const float*, const uint32_t*, uint32_t,
                        uint32_t, float*, float*) {}
-void recompute_relevance_avx2(const PointsView&, const float*, const float*, const float*,
-                              const uint32_t*, uint32_t, uint32_t, float*) {}
+void recompute_relevance_avx2(const PointsView&, const uint32_t*, const float*, const float*,
+                              const float*, const uint32_t*, uint32_t, uint32_t, float*) {}
 void size_stipples_avx2(const SizeKernelFrame&, const float*, const float*, const float*,
                         const uint32_t*, uint32_t, uint32_t, float*) {}
 uint32_t triangle_stretch_avx2(const uint32_t*, const float*, const float*, uint32_t, float*,

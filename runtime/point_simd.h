@@ -46,16 +46,23 @@ struct SizeKernelFrame {
 // 12-byte loads from two arrays). Plain copies: the bits of positions and normals.
 void pair_vertices(uint32_t count, const float* positions, const float* normals, float* out);
 
+// Relevance's AVX2 input: each point's relevant neighbours at a fixed stride of 4,
+// out[4 i .. 4 i + 4), a list shorter than 4 padded with i itself (its term is p - p = +0, which
+// leaves every sum's bits as they are). One 16-byte record per point instead of two offsets and a
+// list elsewhere. Returns false (out partly written) when a list holds more than 4.
+bool quad_neighbours(const PointsView& points, uint32_t* out);
+
 // The AVX2 kernels over the points list[begin .. end) (list null: the points begin .. end);
 // each writes only those points' outputs. Only call them when point_simd() is avx2. Place
 // reads the vertices as pair_vertices lays them out.
 void place_points_avx2(const PointsView& points, const uint32_t* indices, const float* pairs,
                        const uint32_t* list, uint32_t begin, uint32_t end, float* out_positions,
                        float* out_normals);
-void recompute_relevance_avx2(const PointsView& points, const float* point_positions,
-                              const float* scale, const float* fallback_radius,
-                              const uint32_t* list, uint32_t begin, uint32_t end,
-                              float* out_radius);
+// Relevance reads the neighbours from `quads` (quad_neighbours) when it is not null.
+void recompute_relevance_avx2(const PointsView& points, const uint32_t* quads,
+                              const float* point_positions, const float* scale,
+                              const float* fallback_radius, const uint32_t* list, uint32_t begin,
+                              uint32_t end, float* out_radius);
 void size_stipples_avx2(const SizeKernelFrame& frame, const float* positions, const float* normals,
                         const float* radius, const uint32_t* list, uint32_t begin, uint32_t end,
                         float* out_size);

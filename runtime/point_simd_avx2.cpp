@@ -168,47 +168,77 @@ inline float relevance_radius4(const PointsView& points, const float* positions,
     return fallback_radius[i];
 }
 
+// Alg. 6.4's neighbour moment of 8 points, one per lane: the six sums in neighbour order per
+// lane (point_placement.cpp's neighbour_moment).
+struct Moment8 {
+    f8 xx, yy, zz, xy, xz, yz;
+};
+inline Moment8 zero_moment8() {  // (no default member initializers: they would not be AVX2 code)
+    const f8 z = _mm256_setzero_ps();
+    return Moment8{z, z, z, z, z, z};
+}
+inline void add_neighbours8(Moment8* m, f8 px, f8 py, f8 pz, const float* positions,
+                            const uint32_t* at) {
+    f8 qx, qy, qz;
+    xyz8(positions, false, 0, at, qx, qy, qz);
+    const f8 dx = _mm256_sub_ps(qx, px), dy = _mm256_sub_ps(qy, py), dz = _mm256_sub_ps(qz, pz);
+    m->xx = _mm256_add_ps(m->xx, _mm256_mul_ps(dx, dx));
+    m->yy = _mm256_add_ps(m->yy, _mm256_mul_ps(dy, dy));
+    m->zz = _mm256_add_ps(m->zz, _mm256_mul_ps(dz, dz));
+    m->xy = _mm256_add_ps(m->xy, _mm256_mul_ps(dx, dy));
+    m->xz = _mm256_add_ps(m->xz, _mm256_mul_ps(dx, dz));
+    m->yz = _mm256_add_ps(m->yz, _mm256_mul_ps(dy, dz));
+}
+// k I2^(1/4) per lane, I2 clamped at 0 (std::max(i2, 0)).
+inline f8 area_radius8(const Moment8& m, const float* k) {
+    const f8 i2 = _mm256_add_ps(
+        _mm256_add_ps(_mm256_sub_ps(_mm256_mul_ps(m.xx, m.yy), _mm256_mul_ps(m.xy, m.xy)),
+                      _mm256_sub_ps(_mm256_mul_ps(m.xx, m.zz), _mm256_mul_ps(m.xz, m.xz))),
+        _mm256_sub_ps(_mm256_mul_ps(m.yy, m.zz), _mm256_mul_ps(m.yz, m.yz)));
+    const f8 kept =
+        select(_mm256_cmp_ps(i2, _mm256_setzero_ps(), _CMP_LT_OQ), _mm256_setzero_ps(), i2);
+    return _mm256_mul_ps(_mm256_load_ps(k), _mm256_sqrt_ps(_mm256_sqrt_ps(kept)));
+}
+
 // Alg. 6.4's area measure for the 8 points i[0 .. 8) at once, each point's neighbours in its
-// lane: the moment's six sums in neighbour order per lane (point_placement.cpp's
-// neighbour_moment), lanes past a point's last neighbour adding d = p - p = +0 (a sum that
-// starts at +0 never becomes -0, so adding +0 leaves its bits), then k I2^(1/4). Returns
-// false (writing nothing) when a real lane's scale is not > 0 (the mean distance or the
-// fallback radius: the caller takes those points one by one).
-inline bool relevance_area8(const PointsView& points, const float* positions, const float* scale,
-                            const uint32_t* i, int lanes, float* out_radius) {
-    uint32_t first[8], count[8], most = 0;
+// lane, lanes past a point's last neighbour adding d = p - p = +0 (a sum that starts at +0
+// never becomes -0, so adding +0 leaves its bits), then k I2^(1/4). Returns false (writing
+// nothing) when a real lane's scale is not > 0 (the mean distance or the fallback radius: the
+// caller takes those points one by one). With `quads` (point_simd.h's quad_neighbours) the
+// neighbours come from one 16-byte record per point, four steps for every block (a padded
+// entry is the point itself: the same +0); otherwise from the offsets and the list.
+inline bool relevance_area8(const PointsView& points, const uint32_t* quads, const float* positions,
+                            const float* scale, const uint32_t* i, int lanes, float* out_radius) {
     alignas(32) float k[8];
     for (int l = 0; l < 8; ++l) {
         k[l] = scale[i[l]];
         if (!(k[l] > 0.0f)) return false;  // the repeated lanes repeat a real one
-        first[l] = points.neighbour_offsets[i[l]];
-        count[l] = points.neighbour_offsets[i[l] + 1] - first[l];
-        most = count[l] > most ? count[l] : most;
     }
     f8 px, py, pz;
     xyz8(positions, false, 0, i, px, py, pz);
-    f8 xx = _mm256_setzero_ps(), yy = xx, zz = xx, xy = xx, xz = xx, yz = xx;
-    for (uint32_t n = 0; n < most; ++n) {
-        uint32_t at[8];
-        for (int l = 0; l < 8; ++l) at[l] = n < count[l] ? points.neighbours[first[l] + n] : i[l];
-        f8 qx, qy, qz;
-        xyz8(positions, false, 0, at, qx, qy, qz);
-        const f8 dx = _mm256_sub_ps(qx, px), dy = _mm256_sub_ps(qy, py), dz = _mm256_sub_ps(qz, pz);
-        xx = _mm256_add_ps(xx, _mm256_mul_ps(dx, dx));
-        yy = _mm256_add_ps(yy, _mm256_mul_ps(dy, dy));
-        zz = _mm256_add_ps(zz, _mm256_mul_ps(dz, dz));
-        xy = _mm256_add_ps(xy, _mm256_mul_ps(dx, dy));
-        xz = _mm256_add_ps(xz, _mm256_mul_ps(dx, dz));
-        yz = _mm256_add_ps(yz, _mm256_mul_ps(dy, dz));
+    Moment8 m = zero_moment8();
+    uint32_t at[8];
+    if (quads) {
+        const uint32_t* q[8];
+        for (int l = 0; l < 8; ++l) q[l] = quads + size_t(i[l]) * 4;
+        for (int n = 0; n < 4; ++n) {
+            for (int l = 0; l < 8; ++l) at[l] = q[l][n];
+            add_neighbours8(&m, px, py, pz, positions, at);
+        }
+    } else {
+        uint32_t first[8], count[8], most = 0;
+        for (int l = 0; l < 8; ++l) {
+            first[l] = points.neighbour_offsets[i[l]];
+            count[l] = points.neighbour_offsets[i[l] + 1] - first[l];
+            most = count[l] > most ? count[l] : most;
+        }
+        for (uint32_t n = 0; n < most; ++n) {
+            for (int l = 0; l < 8; ++l)
+                at[l] = n < count[l] ? points.neighbours[first[l] + n] : i[l];
+            add_neighbours8(&m, px, py, pz, positions, at);
+        }
     }
-    const f8 i2 =
-        _mm256_add_ps(_mm256_add_ps(_mm256_sub_ps(_mm256_mul_ps(xx, yy), _mm256_mul_ps(xy, xy)),
-                                    _mm256_sub_ps(_mm256_mul_ps(xx, zz), _mm256_mul_ps(xz, xz))),
-                      _mm256_sub_ps(_mm256_mul_ps(yy, zz), _mm256_mul_ps(yz, yz)));
-    const f8 kept = select(_mm256_cmp_ps(i2, _mm256_setzero_ps(), _CMP_LT_OQ), _mm256_setzero_ps(),
-                           i2);  // std::max(i2, 0)
-    const f8 r = _mm256_mul_ps(_mm256_load_ps(k), _mm256_sqrt_ps(_mm256_sqrt_ps(kept)));
-    store1(out_radius, i, lanes, r);
+    store1(out_radius, i, lanes, area_radius8(m, k));
     return true;
 }
 
@@ -285,14 +315,14 @@ void place_points_avx2(const PointsView& points, const uint32_t* indices, const 
 
 // point_placement.cpp's relevance_radius (Thesis Alg. 6.4): the neighbour moment's I2^(1/4)
 // (scale > 0), the mean neighbour distance (scale < 0) or the fallback radius.
-void recompute_relevance_avx2(const PointsView& points, const float* point_positions,
-                              const float* scale, const float* fallback_radius,
-                              const uint32_t* list, uint32_t begin, uint32_t end,
-                              float* out_radius) {
+void recompute_relevance_avx2(const PointsView& points, const uint32_t* quads,
+                              const float* point_positions, const float* scale,
+                              const float* fallback_radius, const uint32_t* list, uint32_t begin,
+                              uint32_t end, float* out_radius) {
     for (uint32_t j = begin; j < end; j += 8) {
         uint32_t i[8];
         const int lanes = step_indices(list, j, end, i);
-        if (!relevance_area8(points, point_positions, scale, i, lanes, out_radius))
+        if (!relevance_area8(points, quads, point_positions, scale, i, lanes, out_radius))
             for (int l = 0; l < lanes; ++l)  // a lane without the area measure: one by one
                 out_radius[i[l]] =
                     relevance_radius4(points, point_positions, scale, fallback_radius, i[l]);

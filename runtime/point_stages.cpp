@@ -39,8 +39,8 @@ void relevance_range(void* context, uint32_t begin, uint32_t end) {
     const StageTask& t = *static_cast<const StageTask*>(context);
     const PointStageFrame& f = *t.f;
     if (t.simd == PointSimd::avx2)
-        recompute_relevance_avx2(*f.points, f.positions, f.scale, f.fallback_radius, t.list, begin,
-                                 end, f.radius);
+        recompute_relevance_avx2(*f.points, f.neighbour_quads, f.positions, f.scale,
+                                 f.fallback_radius, t.list, begin, end, f.radius);
     else if (t.list)
         recompute_listed_relevance(*f.points, f.positions, f.scale, f.fallback_radius,
                                    t.list + begin, end - begin, f.radius);
@@ -72,6 +72,7 @@ PointStageFrame point_stage_frame(Pipeline* p) {
     f.vertex_positions = p->vertex_positions.get();
     f.vertex_normals = p->vertex_normals.get();
     f.vertex_pairs = p->vertex_pairs.get();
+    f.neighbour_quads = p->neighbour_quads.get();
     f.scale = p->radius_scale.get();
     f.fallback_radius = p->rest_radius.get();
     f.params = &p->size_params;

@@ -22,6 +22,9 @@ struct PointStageFrame {
     // The same as pair_vertices lays them out (runtime/point_simd.h), for AVX2 place; null:
     // place runs the scalar code.
     const float* vertex_pairs = nullptr;
+    // Each point's neighbours at a stride of 4 (runtime/point_simd.h's quad_neighbours), for
+    // AVX2 relevance; null: it reads the asset's lists.
+    const uint32_t* neighbour_quads = nullptr;
     const float* scale = nullptr;            // relevance_scale (point_placement.h)
     const float* fallback_radius = nullptr;  // radius of points without neighbours
     const SizeParams* params = nullptr;

@@ -235,10 +235,12 @@ TEST_F(PointStagesTest, SimdKernelsMatchTheScalarCodeOnEdgeCases) {
     list.resize(list.size() - list.size() % 8 - 3);        // a tail of 5
     std::vector<float> pairs(size_t(m.vertex_count) * 8);  // place's AVX2 input
     stipple::pair_vertices(m.vertex_count, m.positions, vn.data(), pairs.data());
+    std::vector<uint32_t> quads(size_t(n) * 4);  // relevance's fixed-stride neighbours
+    ASSERT_TRUE(stipple::quad_neighbours(pts, quads.data()));
     struct Run {
         std::vector<float> pos, nrm, radius, size;
-    } run[2];
-    for (int path = 0; path < 2; ++path) {
+    } run[3];
+    for (int path = 0; path < 3; ++path) {  // baseline, AVX2 with the lists, with the quads
         stipple::point_simd_force(path ? stipple::PointSimd::avx2 : stipple::PointSimd::baseline);
         Run& r = run[path];
         r.pos.assign(size_t(n) * 3, -1.0f);
@@ -251,6 +253,7 @@ TEST_F(PointStagesTest, SimdKernelsMatchTheScalarCodeOnEdgeCases) {
         f.vertex_positions = m.positions;
         f.vertex_normals = vn.data();
         f.vertex_pairs = pairs.data();
+        f.neighbour_quads = path == 2 ? quads.data() : nullptr;
         f.scale = scale.data();
         f.fallback_radius = pts.radius;
         f.params = &params;
@@ -266,10 +269,12 @@ TEST_F(PointStagesTest, SimdKernelsMatchTheScalarCodeOnEdgeCases) {
         stipple::point_stage_size(&pool, f, nullptr, n - 3);
         stipple::point_stage_size(&pool, f, list.data(), uint32_t(list.size()));
     }
-    EXPECT_TRUE(same_bytes(run[0].pos, run[1].pos));
-    EXPECT_TRUE(same_bytes(run[0].nrm, run[1].nrm));
-    EXPECT_TRUE(same_bytes(run[0].radius, run[1].radius));
-    EXPECT_TRUE(same_bytes(run[0].size, run[1].size));
+    for (int path = 1; path < 3; ++path) {
+        EXPECT_TRUE(same_bytes(run[0].pos, run[path].pos)) << path;
+        EXPECT_TRUE(same_bytes(run[0].nrm, run[path].nrm)) << path;
+        EXPECT_TRUE(same_bytes(run[0].radius, run[path].radius)) << path;
+        EXPECT_TRUE(same_bytes(run[0].size, run[path].size)) << path;
+    }
     uint32_t hidden = 0, drawn = 0;
     for (float s : run[1].size) {
         hidden += s == 0.0f;
