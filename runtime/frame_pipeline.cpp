@@ -154,10 +154,17 @@ Status alloc_frame_buffers(Pipeline* p) {
         !alloc(&p->lines, size_t(asset.edges.edge_count) * 6) ||
         !alloc(&p->vertex_pairs, verts * 8))
         return make_status(StatusCode::out_of_memory, "out of memory for %zu points", capacity);
-    if (point_simd_detected() == PointSimd::avx2) {  // relevance's 16-byte records, once
+    if (point_simd_detected() == PointSimd::avx2) {  // the AVX2 kernels' 16-byte records, once
         if (!alloc(&p->neighbour_quads, points * 4))
             return make_status(StatusCode::out_of_memory, "out of memory for %zu points", points);
         if (!quad_neighbours(asset.points, p->neighbour_quads.get())) p->neighbour_quads.reset();
+        if (asset.mesh.vertex_count <= kPointHostMaxVertices) {
+            if (!alloc(&p->point_hosts, points))
+                return make_status(StatusCode::out_of_memory, "out of memory for %zu points",
+                                   points);
+            point_hosts(asset.points, asset.mesh.indices, asset.mesh.vertex_count,
+                        p->point_hosts.get());
+        }
     }
     if (asset.sides.triangle_double_sided) {  // runtime/double_sided.h: per-point flags, once
         if (!alloc(&p->point_double_sided, points))

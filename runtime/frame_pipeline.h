@@ -16,6 +16,7 @@
 #include "runtime/particle_stage.h"
 #include "runtime/point_clusters.h"
 #include "runtime/point_refinement.h"
+#include "runtime/point_simd.h"
 #include "runtime/point_triangulation.h"
 #include "runtime/renderer.h"
 #include "runtime/stipple_size.h"
@@ -72,6 +73,9 @@ struct Pipeline {
     // 4 per baked point when every list holds at most 4 (runtime/point_simd.h's
     // quad_neighbours; AVX2 relevance reads them), else null.
     Buffer<uint32_t> neighbour_quads;
+    // AVX2 place's 16-byte hosts, one per baked point (runtime/point_simd.h's point_hosts),
+    // or null (meshes of more than 2^21 vertices).
+    Buffer<PointHost> point_hosts;
     Buffer<float> draw_positions, draw_sizes;  // the dots with a size, compacted
     Buffer<float> rest_radius;                 // point_count
     // The baked radii, the coarse ranks' following their prefix's surface density

@@ -53,6 +53,18 @@ void pair_vertices(uint32_t count, const float* positions, const float* normals,
     }
 }
 
+bool point_hosts(const PointsView& points, const uint32_t* indices, uint32_t vertex_count,
+                 PointHost* out) {
+    if (vertex_count > kPointHostMaxVertices) return false;
+    for (uint32_t i = 0; i < points.point_count; ++i) {
+        const uint32_t* tri = indices + size_t(points.host_triangle[i]) * 3;
+        out[i].corners = uint64_t(tri[0]) | uint64_t(tri[1]) << 21 | uint64_t(tri[2]) << 42;
+        out[i].u = points.bary_u[i];
+        out[i].v = points.bary_v[i];
+    }
+    return true;
+}
+
 bool quad_neighbours(const PointsView& points, uint32_t* out) {
     for (uint32_t i = 0; i < points.point_count; ++i) {
         const uint32_t begin = points.neighbour_offsets[i], end = points.neighbour_offsets[i + 1];
@@ -72,8 +84,8 @@ SizeKernelFrame::SizeKernelFrame(const SizeParams& p)
 
 #if !((defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__)))
 // No AVX2 anywhere else: point_simd() is never avx2 there, so these are never called.
-void place_points_avx2(const PointsView&, const uint32_t*, const float*, const uint32_t*, uint32_t,
-                       uint32_t, float*, float*) {}
+void place_points_avx2(const PointsView&, const uint32_t*, const PointHost*, const float*,
+                       const uint32_t*, uint32_t, uint32_t, float*, float*) {}
 void recompute_relevance_avx2(const PointsView&, const uint32_t*, const float*, const float*,
                               const float*, const uint32_t*, uint32_t, uint32_t, float*) {}
 void size_stipples_avx2(const SizeKernelFrame&, const float*, const float*, const float*,

@@ -46,6 +46,20 @@ struct SizeKernelFrame {
 // 12-byte loads from two arrays). Plain copies: the bits of positions and normals.
 void pair_vertices(uint32_t count, const float* positions, const float* normals, float* out);
 
+// Place's AVX2 input per baked point, 16 bytes in one line: its host triangle's vertex
+// indices (resolved at load, 21 bits each) and its barycentrics, instead of the host
+// triangle's index (then its three indices, a dependent load) and two more arrays.
+struct PointHost {
+    uint64_t corners;  // a | b << 21 | c << 42
+    float u, v;
+};
+constexpr uint32_t kPointHostMaxVertices = 1u << 21;
+
+// out[i] for every point; false (out not written) when the mesh has more vertices than
+// kPointHostMaxVertices.
+bool point_hosts(const PointsView& points, const uint32_t* indices, uint32_t vertex_count,
+                 PointHost* out);
+
 // Relevance's AVX2 input: each point's relevant neighbours at a fixed stride of 4,
 // out[4 i .. 4 i + 4), a list shorter than 4 padded with i itself (its term is p - p = +0, which
 // leaves every sum's bits as they are). One 16-byte record per point instead of two offsets and a
@@ -54,10 +68,11 @@ bool quad_neighbours(const PointsView& points, uint32_t* out);
 
 // The AVX2 kernels over the points list[begin .. end) (list null: the points begin .. end);
 // each writes only those points' outputs. Only call them when point_simd() is avx2. Place
-// reads the vertices as pair_vertices lays them out.
-void place_points_avx2(const PointsView& points, const uint32_t* indices, const float* pairs,
-                       const uint32_t* list, uint32_t begin, uint32_t end, float* out_positions,
-                       float* out_normals);
+// reads the vertices as pair_vertices lays them out, and the points' hosts from `hosts`
+// (point_hosts) when it is not null.
+void place_points_avx2(const PointsView& points, const uint32_t* indices, const PointHost* hosts,
+                       const float* pairs, const uint32_t* list, uint32_t begin, uint32_t end,
+                       float* out_positions, float* out_normals);
 // Relevance reads the neighbours from `quads` (quad_neighbours) when it is not null.
 void recompute_relevance_avx2(const PointsView& points, const uint32_t* quads,
                               const float* point_positions, const float* scale,

@@ -255,13 +255,12 @@ inline void store3(float* p, __m128 v) {
 // One point of place_point: its position and normal in the lanes of one vector, blended from
 // its host corners' vertex pairs (pair_vertices: x y z 0 nx ny nz 0) in place_point's order,
 // (u a + v b) + w c; the normal's length as place_point sums it.
-inline void place_point8(const PointsView& points, const uint32_t* indices, const float* pairs,
-                         uint32_t i, float* out_positions, float* out_normals) {
-    const uint32_t* tri = indices + size_t(points.host_triangle[i]) * 3;
-    const float u = points.bary_u[i], v = points.bary_v[i], w = 1.0f - u - v;
-    const f8 a = _mm256_loadu_ps(pairs + size_t(tri[0]) * 8);
-    const f8 b = _mm256_loadu_ps(pairs + size_t(tri[1]) * 8);
-    const f8 c = _mm256_loadu_ps(pairs + size_t(tri[2]) * 8);
+inline void place_point8(const float* pairs, uint32_t a_at, uint32_t b_at, uint32_t c_at, float u,
+                         float v, float* out_position, float* out_normal) {
+    const float w = 1.0f - u - v;
+    const f8 a = _mm256_loadu_ps(pairs + size_t(a_at) * 8);
+    const f8 b = _mm256_loadu_ps(pairs + size_t(b_at) * 8);
+    const f8 c = _mm256_loadu_ps(pairs + size_t(c_at) * 8);
     const f8 pn =
         _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(splat(u), a), _mm256_mul_ps(splat(v), b)),
                       _mm256_mul_ps(splat(w), c));
@@ -269,8 +268,8 @@ inline void place_point8(const PointsView& points, const uint32_t* indices, cons
     const __m128 nn = _mm_mul_ps(n, n);
     const float len2 = (lane0(nn) + lane<1>(nn)) + lane<2>(nn);
     const float inv = len2 > 1e-20f ? 1.0f / sqrt1(len2) : 0.0f;
-    store3(out_positions + size_t(i) * 3, p);
-    store3(out_normals + size_t(i) * 3, _mm_mul_ps(n, _mm_set1_ps(inv)));
+    store3(out_position, p);
+    store3(out_normal, _mm_mul_ps(n, _mm_set1_ps(inv)));
 }
 
 }  // namespace
@@ -299,17 +298,39 @@ inline void prefetch_vertices(const PointsView& points, const uint32_t* indices,
     for (int k = 0; k < 3; ++k) prefetch(pairs + size_t(tri[k]) * 8);
 }
 
+constexpr uint64_t kCornerMask = (uint64_t(1) << 21) - 1;
+
+inline void prefetch_corners(const PointHost& h, const float* pairs) {
+    for (int k = 0; k < 3; ++k) prefetch(pairs + size_t(h.corners >> (21 * k) & kCornerMask) * 8);
+}
+
 }  // namespace
 
-// point_placement.cpp's place_point (Thesis Alg. 6.3).
-void place_points_avx2(const PointsView& points, const uint32_t* indices, const float* pairs,
-                       const uint32_t* list, uint32_t begin, uint32_t end, float* out_positions,
-                       float* out_normals) {
+// point_placement.cpp's place_point (Thesis Alg. 6.3), from the points' 16-byte hosts when
+// there are (one line per point, the corners without the triangle's indices in between).
+void place_points_avx2(const PointsView& points, const uint32_t* indices, const PointHost* hosts,
+                       const float* pairs, const uint32_t* list, uint32_t begin, uint32_t end,
+                       float* out_positions, float* out_normals) {
+    if (hosts) {
+        for (uint32_t j = begin; j < end; ++j) {
+            if (j + kFar < end) prefetch(hosts + (list ? list[j + kFar] : j + kFar));
+            if (j + kNear < end) prefetch_corners(hosts[list ? list[j + kNear] : j + kNear], pairs);
+            const uint32_t i = list ? list[j] : j;
+            const PointHost h = hosts[i];
+            place_point8(pairs, uint32_t(h.corners & kCornerMask),
+                         uint32_t(h.corners >> 21 & kCornerMask), uint32_t(h.corners >> 42), h.u,
+                         h.v, out_positions + size_t(i) * 3, out_normals + size_t(i) * 3);
+        }
+        return;
+    }
     for (uint32_t j = begin; j < end; ++j) {
         if (j + kFar < end) prefetch_host(points, indices, list ? list[j + kFar] : j + kFar);
         if (j + kNear < end)
             prefetch_vertices(points, indices, pairs, list ? list[j + kNear] : j + kNear);
-        place_point8(points, indices, pairs, list ? list[j] : j, out_positions, out_normals);
+        const uint32_t i = list ? list[j] : j;
+        const uint32_t* tri = indices + size_t(points.host_triangle[i]) * 3;
+        place_point8(pairs, tri[0], tri[1], tri[2], points.bary_u[i], points.bary_v[i],
+                     out_positions + size_t(i) * 3, out_normals + size_t(i) * 3);
     }
 }
 

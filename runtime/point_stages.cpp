@@ -19,8 +19,8 @@ void place_range(void* context, uint32_t begin, uint32_t end) {
     const StageTask& t = *static_cast<const StageTask*>(context);
     const PointStageFrame& f = *t.f;
     if (t.simd == PointSimd::avx2 && f.vertex_pairs) {
-        place_points_avx2(*f.points, f.indices, f.vertex_pairs, t.list, begin, end, f.positions,
-                          f.normals);
+        place_points_avx2(*f.points, f.indices, f.point_hosts, f.vertex_pairs, t.list, begin, end,
+                          f.positions, f.normals);
     } else if (t.list) {
         place_listed_points(*f.points, f.indices, f.vertex_positions, f.vertex_normals,
                             t.list + begin, end - begin, f.positions, f.normals);
@@ -72,6 +72,7 @@ PointStageFrame point_stage_frame(Pipeline* p) {
     f.vertex_positions = p->vertex_positions.get();
     f.vertex_normals = p->vertex_normals.get();
     f.vertex_pairs = p->vertex_pairs.get();
+    f.point_hosts = p->point_hosts.get();
     f.neighbour_quads = p->neighbour_quads.get();
     f.scale = p->radius_scale.get();
     f.fallback_radius = p->rest_radius.get();

@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "runtime/asset.h"
+#include "runtime/point_simd.h"
 #include "runtime/stipple_size.h"
 #include "runtime/thread_pool.h"
 
@@ -22,6 +23,9 @@ struct PointStageFrame {
     // The same as pair_vertices lays them out (runtime/point_simd.h), for AVX2 place; null:
     // place runs the scalar code.
     const float* vertex_pairs = nullptr;
+    // The points' hosts as runtime/point_simd.h's point_hosts lays them out, for AVX2 place;
+    // null: it reads the asset's host triangles and barycentrics.
+    const PointHost* point_hosts = nullptr;
     // Each point's neighbours at a stride of 4 (runtime/point_simd.h's quad_neighbours), for
     // AVX2 relevance; null: it reads the asset's lists.
     const uint32_t* neighbour_quads = nullptr;

@@ -237,10 +237,12 @@ TEST_F(PointStagesTest, SimdKernelsMatchTheScalarCodeOnEdgeCases) {
     stipple::pair_vertices(m.vertex_count, m.positions, vn.data(), pairs.data());
     std::vector<uint32_t> quads(size_t(n) * 4);  // relevance's fixed-stride neighbours
     ASSERT_TRUE(stipple::quad_neighbours(pts, quads.data()));
+    std::vector<stipple::PointHost> hosts(n);  // place's 16-byte hosts
+    ASSERT_TRUE(stipple::point_hosts(pts, m.indices, m.vertex_count, hosts.data()));
     struct Run {
         std::vector<float> pos, nrm, radius, size;
     } run[3];
-    for (int path = 0; path < 3; ++path) {  // baseline, AVX2 with the lists, with the quads
+    for (int path = 0; path < 3; ++path) {  // baseline, AVX2 on the asset's arrays, on its own
         stipple::point_simd_force(path ? stipple::PointSimd::avx2 : stipple::PointSimd::baseline);
         Run& r = run[path];
         r.pos.assign(size_t(n) * 3, -1.0f);
@@ -254,6 +256,7 @@ TEST_F(PointStagesTest, SimdKernelsMatchTheScalarCodeOnEdgeCases) {
         f.vertex_normals = vn.data();
         f.vertex_pairs = pairs.data();
         f.neighbour_quads = path == 2 ? quads.data() : nullptr;
+        f.point_hosts = path == 2 ? hosts.data() : nullptr;
         f.scale = scale.data();
         f.fallback_radius = pts.radius;
         f.params = &params;
