@@ -179,12 +179,17 @@ void run_frames(Case* c, Run* r) {
     r->ns_per_run_point.v.push_back(cols[kStages] * 1e6 / std::max(r->run, 1.0));
 }
 
-// Bytes the point stages stream per frame: place reads host, u, v and writes position and
-// normal of each placed point; relevance reads offset, scale and position of each run point,
-// index and position of each neighbour, writes the radius; size reads position, normal and
+// Bytes the point stages stream per frame, in the layout the pipeline reads: place reads each
+// placed point's host (its 16-byte record, runtime/point_simd.h's point_hosts, else host, u,
+// v) and writes its position and normal; relevance reads each run point's neighbour record (16
+// bytes with quad_neighbours, else an offset, the indices counted per neighbour), scale and
+// position, each neighbour's position, and writes the radius; size reads position, normal and
 // radius, writes the size (the posed mesh's vertices are cache resident: not counted).
 double stage_bytes(const Run& r) {
-    return r.placed * (12 + 24) + r.run * (4 + 4 + 12 + 4) + r.neighbours * (4 + 12) +
+    const stipple::Pipeline& p = *r.pipeline;
+    const double host = p.point_hosts ? 16 : 12;
+    const double record = p.neighbour_quads ? 16 : 4, index = p.neighbour_quads ? 0 : 4;
+    return r.placed * (host + 24) + r.run * (record + 4 + 12 + 4) + r.neighbours * (index + 12) +
            r.run * (12 + 12 + 4 + 4);
 }
 
