@@ -166,9 +166,11 @@ struct FrameConfig {
     float tone_contrast = kFrameSettings.tone_contrast.fallback;
     float fill[3] = {kFrameSettings.fill[0], kFrameSettings.fill[1], kFrameSettings.fill[2]};
     bool creases = true;  // crease lines (thesis §8.2's sharp edges) when the asset has them
-    // Threads that place, re-scale and size points over contiguous point ranges (fixed at
-    // init; runtime/thread_pool.h). The output is byte-identical for any count. 0 resolves to
-    // the hardware's thread count, at most kMaxAutoThreads.
+    // Threads of the pool (fixed at init; runtime/thread_pool.h). From 2 on, a frame runs its
+    // point part (selection, place, relevance, refinement, size) on a worker beside the line
+    // stages and the mesh pass; the point stages' own split over contiguous point ranges
+    // (runtime/point_stages.h) is for callers of the stages. The output is byte-identical for
+    // any count. 0 resolves to the hardware's thread count, at most kMaxAutoThreads.
     int threads = kFrameSettings.threads.fallback;
     // Particle styles (docs/particles.md): the particle tree's size (fixed at init), and
     // visibility fades: the polygon pass's depth is read back each frame so strokes it hides

@@ -369,6 +369,27 @@ void point_part_task(void* context, uint32_t, uint32_t) {
     point_part(task.p, task.times, &clock);
 }
 
+// The point part started on the worker (when the pool has one) and joined.
+struct BesidePart {
+    ThreadPool pool;
+    StageTimes times;
+    PointPartTask task{nullptr, nullptr};
+    bool on = false;
+};
+void point_part_begin(Pipeline* p, BesidePart* b, bool timed) {
+    b->on = p->pool.threads > 1;
+    if (!b->on) return;
+    b->pool = p->pool;
+    p->pool = ThreadPool();  // the task's until it is finished
+    b->task = PointPartTask{p, timed ? &b->times : nullptr};
+    thread_pool_begin(&b->pool, 1, point_part_task, &b->task);
+}
+void point_part_join(Pipeline* p, BesidePart* b, StageTimes* t) {
+    thread_pool_finish(&b->pool);
+    p->pool = b->pool;
+    if (t) add_point_times(t, b->times);
+}
+
 void draw_lines(Pipeline* p) {
     renderer_draw_line_sets(&p->renderer, p->view_projection, p->lines.get(), p->lines_drawn,
                             p->style.crease_lines.get(), p->style.creases_drawn);
@@ -416,24 +437,16 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
     // The point part runs beside the line stages and the mesh pass when the pool has a worker
     // (it reads only the posed mesh; the frame's GL calls stay on this thread, and the pool is
     // the task's until it is finished).
-    const bool beside = !gpu && p->pool.threads > 1;
-    ThreadPool pool = p->pool;
-    StageTimes worker_times;
-    PointPartTask task{p, t ? &worker_times : nullptr};
-    if (beside) {
-        p->pool = ThreadPool();
-        thread_pool_begin(&pool, 1, point_part_task, &task);
-    }
+    BesidePart beside;
+    if (!gpu) point_part_begin(p, &beside, t != nullptr);
     if (!gpu) line_stages(p, t, &clock);
     renderer_draw_fill(&p->renderer, p->view_projection, p->vertex_positions.get(),
                        p->vertex_normals.get(), p->asset->mesh.vertex_count);
     if (early_lines) draw_lines(p);
     if (!gpu) {
         p->renderer.gl.Flush();
-        if (beside) {
-            thread_pool_finish(&pool);
-            p->pool = pool;
-            if (t) add_point_times(t, worker_times);
+        if (beside.on) {
+            point_part_join(p, &beside, t);
         } else {
             if (t) t->draw += ms_since(&clock);
             point_part(p, t, &clock);
@@ -453,12 +466,23 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
     if (t) t->draw += ms_since(&clock);
 }
 
+// With a worker in the pool the point part runs on it beside the line stages, as in
+// pipeline_frame (its stages on one thread: splitting them in ranges over this machine's two
+// vCPUs was slower than one thread, the ranges' points moving between the cores' caches).
 void pipeline_update(Pipeline* p, const AnimationState& state, StageTimes* t) {
     Clock::time_point clock = Clock::now();
     pose_mesh(p, state, t, &clock);
     if (p->config.path == FramePath::gpu) return gpu_path_update(p, t);  // runtime/gpu_stages.h
-    point_part(p, t, &clock);
-    pipeline_line_and_stroke_stages(p, t, &clock);
+    BesidePart beside;
+    point_part_begin(p, &beside, t != nullptr);
+    if (!beside.on) point_part(p, t, &clock);
+    line_stages(p, t, &clock);
+    if (beside.on) {
+        point_part_join(p, &beside, t);
+        clock = Clock::now();
+    }
+    stroke_stage_update(&p->strokes, *p->asset, pipeline_stroke_input(*p), p->config.stroke_lod_px);
+    if (t) t->strokes += ms_since(&clock);
 }
 
 void pipeline_line_and_stroke_stages(Pipeline* p, StageTimes* t, StageClock::time_point* clock) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "runtime/frame_pipeline.h"
+#include "runtime/point_stages.h"
 #include "tests/alloc/alloc_counter.h"
 #include "tests/common/fixtures.h"
 
@@ -45,11 +46,19 @@ TEST(ThreadAllocation, FramesOnThreeThreadsAllocateNothing) {
         view.lod = f % 20 != 19;                          // and the full stages now and then
         ASSERT_TRUE(stipple::pipeline_set_view(pipeline.get(), view).ok());
         // pipeline_frame runs the point part on a worker beside the mesh pass,
-        // pipeline_update (an application's frame) splits its stages over the threads.
+        // pipeline_update (an application's frame) beside the line stages.
         if (f % 2 == 0)
             stipple::pipeline_frame(pipeline.get(), 0, float(f) / 30.0f, nullptr);
         else
             stipple::pipeline_update(pipeline.get(), {0, float(f) / 30.0f}, nullptr);
+        if (f % 4 == 1) {  // and the stages split in ranges over the threads, as callers may
+            stipple::Pipeline* p = pipeline.get();
+            const stipple::PointStageFrame sf = stipple::point_stage_frame(p);
+            const stipple::PointClusters& c = p->clusters;
+            stipple::point_stage_place(&p->pool, sf, c.placed.get(), c.placed_count);
+            stipple::point_stage_relevance(&p->pool, sf, c.run.get(), c.run_count);
+            stipple::point_stage_size(&p->pool, sf, c.run.get(), c.run_count);
+        }
         stipple::renderer_read_color(&pipeline->renderer, rgba.data());
         most_run = std::max(most_run, pipeline->clusters.stats.points_run);
     }
