@@ -97,10 +97,10 @@ void part_bounds(const float* pairs, const uint32_t* vertices, uint32_t count,
             for (int l = 0; l < lights; ++l) b.least[l] = std::min(b.least[l], 0.0f);
             continue;
         }
-        const glm::vec3 u = n / len;
-        b.axis += u;
+        const float inv = 1.0f / len;  // one divide for the axis and every light's N.L
+        b.axis += n * inv;
         for (int l = 0; l < lights; ++l)
-            b.least[l] = std::min(b.least[l], glm::dot(n, params.light_direction[l]) / len);
+            b.least[l] = std::min(b.least[l], glm::dot(n, params.light_direction[l]) * inv);
     }
     *out = b;
 }
