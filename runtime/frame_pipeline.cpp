@@ -369,6 +369,12 @@ void point_part_task(void* context, uint32_t, uint32_t) {
     point_part(task.p, task.times, &clock);
 }
 
+// Paintstrokes (runtime/stroke_stage.h): after the point part, whose radii their roots read.
+void stroke_stage(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
+    stroke_stage_update(&p->strokes, *p->asset, pipeline_stroke_input(*p), p->config.stroke_lod_px);
+    if (t) t->strokes += ms_since(clock);
+}
+
 // The point part started on the worker (when the pool has one) and joined.
 struct BesidePart {
     ThreadPool pool;
@@ -452,9 +458,7 @@ void pipeline_frame(Pipeline* p, const AnimationState& state, StageTimes* t) {
             point_part(p, t, &clock);
         }
         if (t) t->draw += ms_since(&clock);
-        stroke_stage_update(&p->strokes, *p->asset, pipeline_stroke_input(*p),
-                            p->config.stroke_lod_px);
-        if (t) t->strokes += ms_since(&clock);
+        stroke_stage(p, t, &clock);
     }
     draw_ink(p, !early_lines);
     // Dots and lines lie on the mesh, so the next frame clears only its picture
@@ -481,14 +485,12 @@ void pipeline_update(Pipeline* p, const AnimationState& state, StageTimes* t) {
         point_part_join(p, &beside, t);
         clock = Clock::now();
     }
-    stroke_stage_update(&p->strokes, *p->asset, pipeline_stroke_input(*p), p->config.stroke_lod_px);
-    if (t) t->strokes += ms_since(&clock);
+    stroke_stage(p, t, &clock);
 }
 
 void pipeline_line_and_stroke_stages(Pipeline* p, StageTimes* t, StageClock::time_point* clock) {
     line_stages(p, t, clock);
-    stroke_stage_update(&p->strokes, *p->asset, pipeline_stroke_input(*p), p->config.stroke_lod_px);
-    if (t) t->strokes += ms_since(clock);
+    stroke_stage(p, t, clock);
 }
 
 void pipeline_set_camera(Pipeline* p, const glm::mat4& view, const glm::mat4& projection,
