@@ -91,13 +91,12 @@ void part_bounds(const float* pairs, const uint32_t* vertices, uint32_t count,
         const glm::vec3 p(v[0], v[1], v[2]), n(v[4], v[5], v[6]);
         b.lo = glm::min(b.lo, p);
         b.hi = glm::max(b.hi, p);
-        const float len = glm::length(n);
-        if (!(len > 0.0f)) {  // no direction: no cone, and no light it is sure to get
+        if (!(v[3] > 0.0f)) {  // |n|: no direction, no cone, and no light it is sure to get
             b.cone = false;
             for (int l = 0; l < lights; ++l) b.least[l] = std::min(b.least[l], 0.0f);
             continue;
         }
-        const float inv = 1.0f / len;  // one divide for the axis and every light's N.L
+        const float inv = v[7];  // 1 / |n|, once per vertex (pair_vertices)
         b.axis += n * inv;
         for (int l = 0; l < lights; ++l)
             b.least[l] = std::min(b.least[l], glm::dot(n, params.light_direction[l]) * inv);
@@ -120,8 +119,8 @@ PartFacing part_facing(const float* pairs, const uint32_t* vertices, uint32_t co
     for (uint32_t j = 0; j < count; ++j) {
         const float* v = pairs + size_t(vertices[j]) * 8;
         const glm::vec3 n(v[4], v[5], v[6]);
-        const float len = glm::length(n);
-        if (f.away) {  // faces_away: n . (eye - the box corner nearest along n) < 0
+        const float len = v[3];  // |n| (pair_vertices)
+        if (f.away) {            // faces_away: n . (eye - the box corner nearest along n) < 0
             const glm::vec3 nearest(n.x >= 0.0f ? b.lo.x : b.hi.x, n.y >= 0.0f ? b.lo.y : b.hi.y,
                                     n.z >= 0.0f ? b.lo.z : b.hi.z);
             f.away = glm::dot(n, eye - nearest) < -1e-5f * len * scale;

@@ -34,8 +34,9 @@ float normal_cone_slope_bound(const float* normals, const uint32_t* vertices, ui
 float least_lighting(const float* normals, const uint32_t* vertices, uint32_t count,
                      const SizeParams& params);
 
-// The same bounds in two passes over a part's vertices read as vertex pairs (x y z 0 nx ny nz
-// 0, runtime/point_simd.h's pair_vertices: one cache line per vertex for position and normal),
+// The same bounds in two passes over a part's vertices read as vertex pairs (x y z |n| nx ny nz
+// 1/|n|, runtime/point_simd.h's pair_vertices: one cache line per vertex for position, normal
+// and the normal's length, taken once per vertex, not once per part that holds it),
 // for the level of detail's clusters (runtime/point_clusters_select.cpp), with the box of the
 // positions taken in the first pass and the back-face test in the second.
 struct PartBounds {

@@ -13,7 +13,8 @@ namespace {
 // sqrt(area / kTargetCells)), split further by dominant joint. Fixed by the mesh, not by the
 // point count, so a denser bake has as many clusters, each with more points.
 constexpr double kTargetCells = 256.0;
-constexpr uint32_t kCellBits = 14;  // cell coordinates per axis: 0 .. 2^14 - 1
+constexpr uint32_t kCellBits = 13;    // cell coordinates per axis: 0 .. 2^13 - 1
+constexpr double kBucketEdge = 0.38;  // ~sin 22.5 deg: a face's normals in 3 x 3 cells
 
 const float* vertex(const float* positions, uint32_t v) {
     return positions + size_t(v) * 3;
@@ -51,9 +52,13 @@ int relevance_measure(const Asset& a, uint32_t i) {
     return (area ? 1 : 0) | (line ? 2 : 0);
 }
 
-// The bind face normal's dominant axis and sign (0 .. 5; 0 when degenerate): clusters facing
-// one way have narrow normal cones, so the back-face test culls whole clusters and the slope
-// bound (point_clusters_select.cpp) tightens the cut of those seen at a grazing angle.
+// The bind face normal's direction bucket (0 .. 53; 0 when degenerate): its dominant axis and
+// sign (a cube face), and on that face which third each other component falls in (beyond
+// -kBucketEdge, within, beyond +kBucketEdge of the normal's length: 3 x 3 cells per face).
+// Clusters facing one way have narrow normal cones, so the back-face test culls whole clusters
+// and the slope bound (point_clusters_select.cpp) tightens the cut of those seen at a grazing
+// angle. (Measured against the six faces alone: the points run per frame 24.1k -> 20.4k on the
+// CesiumMan walk, 27.7k -> 19.0k on the bent horse; docs/performance.md, seventh round.)
 uint64_t normal_bucket(const MeshView& m, const uint32_t* tri) {
     const glm::dvec3 a(glm::make_vec3(vertex(m.positions, tri[0])));
     const glm::dvec3 b(glm::make_vec3(vertex(m.positions, tri[1])));
@@ -61,7 +66,10 @@ uint64_t normal_bucket(const MeshView& m, const uint32_t* tri) {
     const glm::dvec3 n = glm::cross(b - a, c - a);
     const glm::dvec3 size = glm::abs(n);
     const int axis = size.x >= size.y && size.x >= size.z ? 0 : (size.y >= size.z ? 1 : 2);
-    return uint64_t(axis * 2 + (n[axis] < 0.0 ? 1 : 0));
+    const double edge = kBucketEdge * glm::length(n);
+    auto third = [&](double x) { return uint64_t(x > edge ? 2 : (x < -edge ? 1 : 0)); };
+    const uint64_t face = uint64_t(axis * 2 + (n[axis] < 0.0 ? 1 : 0));
+    return face * 9 + third(n[(axis + 1) % 3]) * 3 + third(n[(axis + 2) % 3]);
 }
 
 // Per triangle: dominant joint (skinned), bind normal's bucket and grid cell of the bind
@@ -87,7 +95,7 @@ uint64_t triangle_key(const Asset& a, uint32_t t, const float lo[3], double cell
             if (sums[m] > sums[best] || (sums[m] == sums[best] && ids[m] < ids[best])) best = m;
         joint = ids[best];
     }
-    uint64_t key = joint << 3 | normal_bucket(a.mesh, tri);
+    uint64_t key = joint << 6 | normal_bucket(a.mesh, tri);  // 16 + 6 + 3 x 13 bits
     for (int k = 0; k < 3; ++k) {
         const double centre =
             (double(vertex(a.mesh.positions, tri[0])[k]) + vertex(a.mesh.positions, tri[1])[k] +

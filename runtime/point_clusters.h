@@ -100,8 +100,9 @@ inline bool bind_area_defined(const float* gram) {
 }
 
 // Builds the clusters of `asset`'s baked points: triangles grouped by dominant joint (skinned
-// meshes), the dominant axis of their bind normal (a cluster faces one way, so whole clusters
-// on the far side fail the back-face test) and a grid cell of their bind-pose centroid; per cluster
+// meshes), the direction of their bind normal (54 buckets: a cube face and a 3 x 3 cell on it, so
+// a cluster faces one way and whole clusters on the far side fail the back-face test) and a grid
+// cell of their bind-pose centroid; per cluster
 // its vertices, its reach and the radius bounds. `baked_radius` holds the radii the stages use in
 // the bake's space (Pipeline::baked_radius), `rest_radius` the rest-pose radii (point_count each).
 // Fails only with out_of_memory.

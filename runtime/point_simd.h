@@ -42,8 +42,11 @@ struct SizeKernelFrame {
 };
 
 // The posed vertices as place's AVX2 kernel reads them: vertex v's position and normal in
-// out[8 v .. 8 v + 8) as x y z 0 nx ny nz 0 (one 32-byte load per host corner instead of two
-// 12-byte loads from two arrays). Plain copies: the bits of positions and normals.
+// out[8 v .. 8 v + 8) as x y z |n| nx ny nz 1/|n| (one 32-byte load per host corner instead of
+// two 12-byte loads from two arrays). Plain copies: the bits of positions and normals; |n| with
+// glm::length's bits and 1/|n| (0 where |n| is not > 0) once per vertex for the clusters' normal
+// bounds (runtime/normal_bounds.h), which visit each vertex from several clusters. Place blends
+// all 8 lanes and keeps 3 of each half.
 void pair_vertices(uint32_t count, const float* positions, const float* normals, float* out);
 
 // Place's AVX2 input per baked point, 16 bytes in one line: its host triangle's vertex
