@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "runtime/memory.h"
+
 namespace stipple {
 
 namespace {
@@ -26,13 +28,6 @@ float cone_slope_bound(const glm::vec3& axis, float cos_t, const glm::vec3& lo, 
 }
 
 constexpr uint32_t kAhead = 8;
-inline void prefetch(const float* p) {
-#if defined(__GNUC__) || defined(__clang__)
-    __builtin_prefetch(p);
-#else
-    (void)p;
-#endif
-}
 
 // lighting() at least, from each light's least N.L (<= 0 gives that light nothing).
 float lighting_from_least(const float* least, const SizeParams& params) {
@@ -86,7 +81,7 @@ void part_bounds(const float* pairs, const uint32_t* vertices, uint32_t count,
     for (int l = 0; l < lights; ++l) b.least[l] = 1.0f;
     for (uint32_t j = 0; j < count; ++j) {
         // The vertices lie scattered over the mesh (the horse: 1.5 MB of pairs): fetch ahead.
-        if (j + kAhead < count) prefetch(pairs + size_t(vertices[j + kAhead]) * 8);
+        if (j + kAhead < count) prefetch_read(pairs + size_t(vertices[j + kAhead]) * 8);
         const float* v = pairs + size_t(vertices[j]) * 8;
         const glm::vec3 p(v[0], v[1], v[2]), n(v[4], v[5], v[6]);
         b.lo = glm::min(b.lo, p);

@@ -126,21 +126,14 @@ void place_closure(PointClusters* c, const PointsView& p) {
 // `closure_begin` entries, then their `closure` entries, each a few lines apart (the cut
 // suffixes between them), which the hardware prefetcher does not follow. Fetched ahead.
 constexpr uint32_t kAheadClusters = 4;
-inline void prefetch(const void* p) {
-#if defined(__GNUC__) || defined(__clang__)
-    __builtin_prefetch(p);
-#else
-    (void)p;
-#endif
-}
 void prefetch_prefix(const PointClusters& c, uint32_t k) {
     const uint32_t begin = c.point_begin[k];
-    prefetch(c.order.get() + begin);
-    prefetch(c.closure_begin.get() + begin);
-    prefetch(c.closure_begin.get() + begin + c.keep[k]);
+    prefetch_read(c.order.get() + begin);
+    prefetch_read(c.closure_begin.get() + begin);
+    prefetch_read(c.closure_begin.get() + begin + c.keep[k]);
 }
 void prefetch_closure(const PointClusters& c, uint32_t k) {
-    prefetch(c.closure.get() + c.closure_begin[c.point_begin[k]]);
+    prefetch_read(c.closure.get() + c.closure_begin[c.point_begin[k]]);
 }
 
 // Whether the first `keep` points of cluster k (ascending) reach point index `from`.
