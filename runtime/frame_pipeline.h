@@ -62,8 +62,9 @@ struct Pipeline {
     Buffer<glm::mat4> models;                        // node_count
     Buffer<glm::mat4> skin_matrices;                 // joint_count
     Buffer<float> vertex_positions, vertex_normals;  // 3 * vertex_count
-    // Each posed vertex as 8 floats, x y z 0 nx ny nz 0 (runtime/point_simd.h's pair_vertices),
-    // filled at the start of the frame's point stages: the clusters' tests and AVX2 place.
+    // Each posed vertex as 8 floats, x y z |n| nx ny nz 1/|n| (runtime/point_simd.h's
+    // pair_vertices), filled at the start of the frame's point stages: the clusters' tests and AVX2
+    // place.
     Buffer<float> vertex_pairs;
     // Points of the frame: the baked hierarchy (point_count) followed by the run-time
     // refinement's extra points (up to refinement_budget); capacity = point_count + budget.

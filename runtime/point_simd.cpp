@@ -49,7 +49,7 @@ void pair_vertices(uint32_t count, const float* positions, const float* normals,
         float* o = out + size_t(v) * 8;
         std::memcpy(o, positions + size_t(v) * 3, 12);
         std::memcpy(o + 4, normals + size_t(v) * 3, 12);
-        const float len = glm::length(glm::vec3(o[4], o[5], o[6]));  // part_bounds' own length
+        const float len = glm::length(glm::vec3(o[4], o[5], o[6]));  // for normal_bounds.h
         o[3] = len;
         o[7] = len > 0.0f ? 1.0f / len : 0.0f;
     }

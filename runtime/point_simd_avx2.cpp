@@ -253,8 +253,9 @@ inline void store3(float* p, __m128 v) {
 }
 
 // One point of place_point: its position and normal in the lanes of one vector, blended from
-// its host corners' vertex pairs (pair_vertices: x y z 0 nx ny nz 0) in place_point's order,
-// (u a + v b) + w c; the normal's length as place_point sums it.
+// its host corners' vertex pairs (pair_vertices: x y z |n| nx ny nz 1/|n|; the 4th lanes blend to
+// values never stored) in place_point's order, (u a + v b) + w c; the normal's length as
+// place_point sums it.
 inline void place_point8(const float* pairs, uint32_t a_at, uint32_t b_at, uint32_t c_at, float u,
                          float v, float* out_position, float* out_normal) {
     const float w = 1.0f - u - v;
