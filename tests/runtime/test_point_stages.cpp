@@ -288,6 +288,25 @@ TEST_F(PointStagesTest, SimdKernelsMatchTheScalarCodeOnEdgeCases) {
     EXPECT_EQ(run[1].size[n - 1], -1.0f);  // outside every range: untouched
 }
 
+// The vertex pairs place and the clusters' normal bounds read: position and normal copied bit
+// for bit, the normal's length and its inverse in the spare lanes (0 and 0 for no normal).
+TEST(VertexPairs, CarryPositionNormalLengthAndInverse) {
+    const float positions[6] = {1.0f, -2.0f, 3.5f, 0.0f, 0.0f, 0.0f};
+    const float normals[6] = {3.0f, 4.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+    float pairs[16];
+    std::fill(pairs, pairs + 16, -7.0f);
+    stipple::pair_vertices(2, positions, normals, pairs);
+    for (int v = 0; v < 2; ++v)
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_EQ(pairs[v * 8 + k], positions[v * 3 + k]) << v << " " << k;
+            EXPECT_EQ(pairs[v * 8 + 4 + k], normals[v * 3 + k]) << v << " " << k;
+        }
+    EXPECT_EQ(pairs[3], 5.0f);
+    EXPECT_EQ(pairs[7], 0.2f);
+    EXPECT_EQ(pairs[11], 0.0f);
+    EXPECT_EQ(pairs[15], 0.0f);
+}
+
 TEST(PointStagesConfig, ThreadsAreResolvedAndRangeChecked) {
     stipple::FrameConfig c;
     stipple::FrameConfig out;
