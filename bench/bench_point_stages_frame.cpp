@@ -20,6 +20,7 @@
 #include "bench/bench_asset.h"
 #include "platform/headless_context.h"
 #include "runtime/frame_pipeline.h"
+#include "runtime/point_simd.h"
 
 namespace {
 
@@ -184,13 +185,16 @@ void run_frames(Case* c, Run* r) {
 // v) and writes its position and normal; relevance reads each run point's neighbour record (16
 // bytes with quad_neighbours, else an offset, the indices counted per neighbour), scale and
 // position, each neighbour's position, and writes the radius; size reads position, normal and
-// radius, writes the size (the posed mesh's vertices are cache resident: not counted).
+// radius, writes the size (the posed mesh's vertices are cache resident: not counted). Fused
+// (runtime/point_stages.h's point_stage_relevance_size, the AVX2 path) size reads only the
+// normal: the position and radius are already in registers.
 double stage_bytes(const Run& r) {
     const stipple::Pipeline& p = *r.pipeline;
     const double host = p.point_hosts ? 16 : 12;
     const double record = p.neighbour_quads ? 16 : 4, index = p.neighbour_quads ? 0 : 4;
+    const bool fused = stipple::point_simd() == stipple::PointSimd::avx2;
     return r.placed * (host + 24) + r.run * (record + 4 + 12 + 4) + r.neighbours * (index + 12) +
-           r.run * (12 + 12 + 4 + 4);
+           r.run * (fused ? 12 + 4 : 12 + 12 + 4 + 4);
 }
 
 // memcpy bandwidth (read + write bytes per ns) over `bytes`, best of 5 copies.

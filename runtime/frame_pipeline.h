@@ -36,7 +36,9 @@ struct AnimationState {
 };
 
 struct StageTimes {  // milliseconds
-    // select: the level of detail's choice of points (runtime/point_clusters.h), before place
+    // select: the level of detail's choice of points (runtime/point_clusters.h), before place;
+    // relevance: with relevance recompute on the AVX2 path, the fused relevance + size pass
+    // (runtime/point_stages.h), size then only what follows it
     double sample = 0, skin = 0, select = 0, place = 0, relevance = 0, refine = 0, size = 0,
            silhouette = 0, strokes = 0, draw = 0, readback = 0;
 };

@@ -22,6 +22,27 @@ bool hierarchy_running_out(const float* size, uint32_t baked) {
     return baked < 4;
 }
 
+// Thesis Alg. 6.4 then 3.2 over the points list[0 .. count) (list null: 0 .. count - 1): one
+// fused pass when relevance is recomputed on the AVX2 path (runtime/point_stages.h), else
+// relevance (or the rest radii) and then size.
+void relevance_and_size(Pipeline* p, const PointStageFrame& f, const uint32_t* list, uint32_t count,
+                        StageTimes* t, Clock::time_point* clock) {
+    const bool update = p->config.relevance_update;
+    if (!(update && point_stage_relevance_size(&p->pool, f, list, count))) {
+        if (update)
+            point_stage_relevance(&p->pool, f, list, count);
+        else if (!list)
+            std::memcpy(p->radius.get(), p->rest_radius.get(), size_t(count) * 4);
+        else
+            for (uint32_t j = 0; j < count; ++j) p->radius[list[j]] = p->rest_radius[list[j]];
+        if (t) t->relevance += ms_since(clock);
+        point_stage_size(&p->pool, f, list, count);
+    } else if (t) {
+        t->relevance += ms_since(clock);
+    }
+    if (t) t->size += ms_since(clock);
+}
+
 // Thesis Alg. 6.3, 6.4 and 3.2 over every baked point.
 void full_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
     const Asset& a = *p->asset;
@@ -31,12 +52,7 @@ void full_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
                              p->point_positions.get(), p->point_normals.get(), p->size_params.eye);
     if (t) t->place += ms_since(clock);
     const uint32_t baked = a.points.point_count;
-    if (p->config.relevance_update)
-        point_stage_relevance(&p->pool, f, nullptr, baked);
-    else
-        std::memcpy(p->radius.get(), p->rest_radius.get(), size_t(baked) * 4);
-    if (t) t->relevance += ms_since(clock);
-    point_stage_size(&p->pool, f, nullptr, baked);
+    relevance_and_size(p, f, nullptr, baked, t, clock);
     p->lod_sizes_clear = false;
     if (t) t->size += ms_since(clock);
 }
@@ -73,13 +89,7 @@ void lod_point_stages(Pipeline* p, StageTimes* t, Clock::time_point* clock) {
                                     p->point_positions.get(), p->point_normals.get(),
                                     p->size_params.eye);
     if (t) t->place += ms_since(clock);
-    if (p->config.relevance_update)
-        point_stage_relevance(&p->pool, f, run, c.run_count);
-    else
-        for (uint32_t j = 0; j < c.run_count; ++j) p->radius[run[j]] = p->rest_radius[run[j]];
-    if (t) t->relevance += ms_since(clock);
-    point_stage_size(&p->pool, f, run, c.run_count);
-    if (t) t->size += ms_since(clock);
+    relevance_and_size(p, f, run, c.run_count, t, clock);
 }
 
 // hierarchy_running_out over the selection: only run points can have a size.

@@ -92,6 +92,9 @@ void recompute_relevance_avx2(const PointsView&, const uint32_t*, const float*, 
                               const float*, const uint32_t*, uint32_t, uint32_t, float*) {}
 void size_stipples_avx2(const SizeKernelFrame&, const float*, const float*, const float*,
                         const uint32_t*, uint32_t, uint32_t, float*) {}
+void relevance_size_avx2(const PointsView&, const uint32_t*, const SizeKernelFrame&, const float*,
+                         const float*, const float*, const float*, const uint32_t*, uint32_t,
+                         uint32_t, float*, float*) {}
 uint32_t triangle_stretch_avx2(const uint32_t*, const float*, const float*, uint32_t, float*,
                                float*) {
     return 0;

@@ -84,6 +84,13 @@ void recompute_relevance_avx2(const PointsView& points, const uint32_t* quads,
 void size_stipples_avx2(const SizeKernelFrame& frame, const float* positions, const float* normals,
                         const float* radius, const uint32_t* list, uint32_t begin, uint32_t end,
                         float* out_size);
+// Relevance and then size over the same points in one pass (issue 9 item 5, stage fusion):
+// each point's position is read once and its radius reaches size in a register; writes
+// out_radius and out_size with the bits of the two kernels above run one after the other.
+void relevance_size_avx2(const PointsView& points, const uint32_t* quads,
+                         const SizeKernelFrame& frame, const float* positions, const float* normals,
+                         const float* scale, const float* fallback_radius, const uint32_t* list,
+                         uint32_t begin, uint32_t end, float* out_radius, float* out_size);
 
 // point_clusters_select.cpp's per-triangle squared stretches for triangles 0 .. count - 1,
 // 8 at a time; returns how many it did (the caller runs the scalar code on the rest).

@@ -202,20 +202,20 @@ inline f8 area_radius8(const Moment8& m, const float* k) {
 
 // Alg. 6.4's area measure for the 8 points i[0 .. 8) at once, each point's neighbours in its
 // lane, lanes past a point's last neighbour adding d = p - p = +0 (a sum that starts at +0
-// never becomes -0, so adding +0 leaves its bits), then k I2^(1/4). Returns false (writing
-// nothing) when a real lane's scale is not > 0 (the mean distance or the fallback radius: the
-// caller takes those points one by one). With `quads` (point_simd.h's quad_neighbours) the
-// neighbours come from one 16-byte record per point, four steps for every block (a padded
-// entry is the point itself: the same +0); otherwise from the offsets and the list.
+// never becomes -0, so adding +0 leaves its bits), then k I2^(1/4) into *radius; px, py, pz
+// are the 8 points' positions. Returns false (radius not set) when a real lane's scale is not > 0
+// (the mean distance or the fallback radius: the caller takes those points one by one). With
+// `quads` (point_simd.h's quad_neighbours) the neighbours come from one 16-byte record per point,
+// four steps for every block (a padded entry is the point itself: the same +0); otherwise from the
+// offsets and the list.
 inline bool relevance_area8(const PointsView& points, const uint32_t* quads, const float* positions,
-                            const float* scale, const uint32_t* i, int lanes, float* out_radius) {
+                            const float* scale, const uint32_t* i, f8 px, f8 py, f8 pz,
+                            f8* radius) {
     alignas(32) float k[8];
     for (int l = 0; l < 8; ++l) {
         k[l] = scale[i[l]];
         if (!(k[l] > 0.0f)) return false;  // the repeated lanes repeat a real one
     }
-    f8 px, py, pz;
-    xyz8(positions, false, 0, i, px, py, pz);
     Moment8 m = zero_moment8();
     uint32_t at[8];
     if (quads) {
@@ -238,7 +238,7 @@ inline bool relevance_area8(const PointsView& points, const uint32_t* quads, con
             add_neighbours8(&m, px, py, pz, positions, at);
         }
     }
-    store1(out_radius, i, lanes, area_radius8(m, k));
+    *radius = area_radius8(m, k);
     return true;
 }
 
@@ -344,7 +344,11 @@ void recompute_relevance_avx2(const PointsView& points, const uint32_t* quads,
     for (uint32_t j = begin; j < end; j += 8) {
         uint32_t i[8];
         const int lanes = step_indices(list, j, end, i);
-        if (!relevance_area8(points, quads, point_positions, scale, i, lanes, out_radius))
+        f8 px, py, pz, r;
+        xyz8(point_positions, false, 0, i, px, py, pz);
+        if (relevance_area8(points, quads, point_positions, scale, i, px, py, pz, &r))
+            store1(out_radius, i, lanes, r);
+        else
             for (int l = 0; l < lanes; ++l)  // a lane without the area measure: one by one
                 out_radius[i[l]] =
                     relevance_radius4(points, point_positions, scale, fallback_radius, i[l]);
@@ -401,36 +405,69 @@ inline Facing8 facing8(const SizeKernelFrame& f, f8 px, f8 py, f8 pz, f8 nx, f8 
     return r;
 }
 
+// Alg. 3.2 for 8 points whose positions are in lanes: their normals loaded, r their
+// relevance radii; stipple_size.cpp's stipple_size operation by operation.
+inline f8 size8(const SizeKernelFrame& f, f8 px, f8 py, f8 pz, const float* normals, f8 r, bool run,
+                uint32_t j, const uint32_t* i) {
+    const SizeParams& s = *f.params;
+    const f8 zero = _mm256_setzero_ps(), one = splat(1.0f);
+    const float max_size = s.max_point_size;
+    const f8 dot_area = splat(0.785398163f * max_size * max_size);
+    const f8 slope = splat(s.smooth_slope - 1.0f);
+    f8 nx, ny, nz;
+    xyz8(normals, run, j, i, nx, ny, nz);
+    const Facing8 facing = facing8(f, px, py, pz, nx, ny, nz);
+    const f8 n_dot_v = facing.n_dot_v, w = facing.w, hidden = facing.hidden;
+    const f8 r_px = _mm256_div_ps(_mm256_mul_ps(r, splat(f.focal)), w);
+    const f8 region = _mm256_mul_ps(_mm256_mul_ps(r_px, r_px), n_dot_v);
+    const f8 ink = ink_at(f.table, lighting8(s, nx, ny, nz));
+    // smooth_point_size
+    const f8 ratio = _mm256_div_ps(ink, _mm256_div_ps(dot_area, region));
+    f8 t = _mm256_div_ps(_mm256_sub_ps(ratio, one), slope);
+    t = select(_mm256_cmp_ps(t, zero, _CMP_LT_OQ), zero,
+               select(_mm256_cmp_ps(t, one, _CMP_GT_OQ), one, t));
+    return select(hidden, zero, _mm256_mul_ps(t, splat(max_size)));
+}
+
 }  // namespace
 
 // stipple_size.cpp's stipple_size (Thesis §3.1.1, §3.1.2, Alg. 3.2), 8 points at a time.
 void size_stipples_avx2(const SizeKernelFrame& f, const float* positions, const float* normals,
                         const float* radius, const uint32_t* list, uint32_t begin, uint32_t end,
                         float* out_size) {
-    const SizeParams& s = *f.params;
-    const f8 zero = _mm256_setzero_ps(), one = splat(1.0f);
-    const float max_size = s.max_point_size;
-    const f8 dot_area = splat(0.785398163f * max_size * max_size);
-    const f8 slope = splat(s.smooth_slope - 1.0f);
     for (uint32_t j = begin; j < end; j += 8) {
         uint32_t i[8];
         const int lanes = step_indices(list, j, end, i);
         const bool run = !list && lanes == 8;
-        f8 px, py, pz, nx, ny, nz;
+        f8 px, py, pz;
         xyz8(positions, run, j, i, px, py, pz);
-        xyz8(normals, run, j, i, nx, ny, nz);
-        const Facing8 facing = facing8(f, px, py, pz, nx, ny, nz);
-        const f8 n_dot_v = facing.n_dot_v, w = facing.w, hidden = facing.hidden;
-        const f8 r_px = _mm256_div_ps(_mm256_mul_ps(one8(radius, run, j, i), splat(f.focal)), w);
-        const f8 region = _mm256_mul_ps(_mm256_mul_ps(r_px, r_px), n_dot_v);
-        const f8 ink = ink_at(f.table, lighting8(s, nx, ny, nz));
-        // smooth_point_size
-        const f8 ratio = _mm256_div_ps(ink, _mm256_div_ps(dot_area, region));
-        f8 t = _mm256_div_ps(_mm256_sub_ps(ratio, one), slope);
-        t = select(_mm256_cmp_ps(t, zero, _CMP_LT_OQ), zero,
-                   select(_mm256_cmp_ps(t, one, _CMP_GT_OQ), one, t));
-        const f8 size = select(hidden, zero, _mm256_mul_ps(t, splat(max_size)));
-        put8(out_size, run, j, i, lanes, size);
+        put8(out_size, run, j, i, lanes,
+             size8(f, px, py, pz, normals, one8(radius, run, j, i), run, j, i));
+    }
+}
+
+// Relevance then size over the same 8 points (Thesis Alg. 6.4, then Alg. 3.2): each point's
+// position is loaded once, into the lanes both stages read, and its new radius goes to size in
+// the register it was computed in (stored for the later stages too). The same operations as
+// recompute_relevance_avx2 followed by size_stipples_avx2, so the same bits.
+void relevance_size_avx2(const PointsView& points, const uint32_t* quads, const SizeKernelFrame& f,
+                         const float* positions, const float* normals, const float* scale,
+                         const float* fallback_radius, const uint32_t* list, uint32_t begin,
+                         uint32_t end, float* out_radius, float* out_size) {
+    for (uint32_t j = begin; j < end; j += 8) {
+        uint32_t i[8];
+        const int lanes = step_indices(list, j, end, i);
+        f8 px, py, pz, r;
+        xyz8(positions, false, 0, i, px, py, pz);
+        if (relevance_area8(points, quads, positions, scale, i, px, py, pz, &r)) {
+            store1(out_radius, i, lanes, r);
+        } else {
+            for (int l = 0; l < lanes; ++l)  // a lane without the area measure: one by one
+                out_radius[i[l]] =
+                    relevance_radius4(points, positions, scale, fallback_radius, i[l]);
+            r = one8(out_radius, false, 0, i);
+        }
+        store1(out_size, i, lanes, size8(f, px, py, pz, normals, r, false, 0, i));
     }
 }
 

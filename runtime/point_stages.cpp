@@ -63,6 +63,13 @@ void size_range(void* context, uint32_t begin, uint32_t end) {
                       f.radius + begin, *f.params, f.size + begin);
 }
 
+void relevance_size_range(void* context, uint32_t begin, uint32_t end) {
+    const StageTask& t = *static_cast<const StageTask*>(context);
+    const PointStageFrame& f = *t.f;
+    relevance_size_avx2(*f.points, f.neighbour_quads, *t.size_frame, f.positions, f.normals,
+                        f.scale, f.fallback_radius, t.list, begin, end, f.radius, f.size);
+}
+
 }  // namespace
 
 PointStageFrame point_stage_frame(Pipeline* p) {
@@ -113,6 +120,16 @@ void point_stage_size(ThreadPool* pool, const PointStageFrame& f, const uint32_t
     }
     StageTask task{&f, list, simd, nullptr};
     thread_pool_run(pool, count, kMinPointsPerThread, size_range, &task);
+}
+
+bool point_stage_relevance_size(ThreadPool* pool, const PointStageFrame& f, const uint32_t* list,
+                                uint32_t count) {
+    const PointSimd simd = point_simd();
+    if (simd != PointSimd::avx2) return false;
+    const SizeKernelFrame frame(*f.params);  // once for every range
+    StageTask task{&f, list, simd, &frame};
+    thread_pool_run(pool, count, kMinPointsPerThread, relevance_size_range, &task);
+    return true;
 }
 
 }  // namespace stipple

@@ -56,5 +56,11 @@ void point_stage_relevance(ThreadPool* pool, const PointStageFrame& f, const uin
                            uint32_t count);
 void point_stage_size(ThreadPool* pool, const PointStageFrame& f, const uint32_t* list,
                       uint32_t count);
+// Relevance and size in one pass over the points (issue 9 item 5, stage fusion: each point's
+// position read once, its radius handed over in a register), with the bits of
+// point_stage_relevance then point_stage_size. Only the AVX2 path has it: returns false, doing
+// nothing, on the baseline path (the caller runs the two stages).
+bool point_stage_relevance_size(ThreadPool* pool, const PointStageFrame& f, const uint32_t* list,
+                                uint32_t count);
 
 }  // namespace stipple

@@ -241,8 +241,9 @@ TEST_F(PointStagesTest, SimdKernelsMatchTheScalarCodeOnEdgeCases) {
     ASSERT_TRUE(stipple::point_hosts(pts, m.indices, m.vertex_count, hosts.data()));
     struct Run {
         std::vector<float> pos, nrm, radius, size;
-    } run[3];
-    for (int path = 0; path < 3; ++path) {  // baseline, AVX2 on the asset's arrays, on its own
+    } run[4];
+    // baseline, AVX2 on the asset's arrays, on its own records, and with relevance and size fused
+    for (int path = 0; path < 4; ++path) {
         stipple::point_simd_force(path ? stipple::PointSimd::avx2 : stipple::PointSimd::baseline);
         Run& r = run[path];
         r.pos.assign(size_t(n) * 3, -1.0f);
@@ -255,8 +256,8 @@ TEST_F(PointStagesTest, SimdKernelsMatchTheScalarCodeOnEdgeCases) {
         f.vertex_positions = m.positions;
         f.vertex_normals = vn.data();
         f.vertex_pairs = pairs.data();
-        f.neighbour_quads = path == 2 ? quads.data() : nullptr;
-        f.point_hosts = path == 2 ? hosts.data() : nullptr;
+        f.neighbour_quads = path >= 2 ? quads.data() : nullptr;
+        f.point_hosts = path >= 2 ? hosts.data() : nullptr;
         f.scale = scale.data();
         f.fallback_radius = pts.radius;
         f.params = &params;
@@ -267,12 +268,18 @@ TEST_F(PointStagesTest, SimdKernelsMatchTheScalarCodeOnEdgeCases) {
         stipple::ThreadPool pool;                              // one thread: the kernels alone
         stipple::point_stage_place(&pool, f, nullptr, n - 3);  // a tail, and 3 points unplaced
         stipple::point_stage_place(&pool, f, list.data(), uint32_t(list.size()));
+        if (path == 3) {
+            ASSERT_TRUE(stipple::point_stage_relevance_size(&pool, f, nullptr, n - 3));
+            ASSERT_TRUE(
+                stipple::point_stage_relevance_size(&pool, f, list.data(), uint32_t(list.size())));
+            continue;
+        }
         stipple::point_stage_relevance(&pool, f, nullptr, n - 3);
         stipple::point_stage_relevance(&pool, f, list.data(), uint32_t(list.size()));
         stipple::point_stage_size(&pool, f, nullptr, n - 3);
         stipple::point_stage_size(&pool, f, list.data(), uint32_t(list.size()));
     }
-    for (int path = 1; path < 3; ++path) {
+    for (int path = 1; path < 4; ++path) {
         EXPECT_TRUE(same_bytes(run[0].pos, run[path].pos)) << path;
         EXPECT_TRUE(same_bytes(run[0].nrm, run[path].nrm)) << path;
         EXPECT_TRUE(same_bytes(run[0].radius, run[path].radius)) << path;
