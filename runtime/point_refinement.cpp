@@ -284,9 +284,10 @@ float near_plane_w(const SizeParams& params) {
 }
 
 // Per posed vertex: clip position, which frustum planes it lies outside, and the ink the
-// size rule needs there for each side (N.V times the ink of its lighting).
+// size rule needs there for each side (N.V times the ink of its lighting); the back side's
+// only with `back` (a mesh with double-sided triangles: the points domain has none, 0 there).
 void classify_vertex(RefinementMesh* r, const float* positions, const float* normals,
-                     const SizeParams& params, const InkTable& ink, uint32_t i) {
+                     const SizeParams& params, const InkTable& ink, bool back, uint32_t i) {
     const glm::mat4& m = params.view_projection;
     const glm::vec3 p(positions[i * 3], positions[i * 3 + 1], positions[i * 3 + 2]);
     const glm::vec3 n(normals[i * 3], normals[i * 3 + 1], normals[i * 3 + 2]);
@@ -299,21 +300,22 @@ void classify_vertex(RefinementMesh* r, const float* positions, const float* nor
                            uint32_t(c.y < -c.w) << 2 | uint32_t(c.y > c.w) << 3 |
                            uint32_t(c.z < -c.w) << 4 | uint32_t(c.z > c.w) << 5;
     r->vertex[i].need = n_dot_v > 0.0f ? n_dot_v * ink.at(lighting(params, n)) : 0.0f;
-    r->vertex[i].need_back = n_dot_v < 0.0f ? -n_dot_v * ink.at(lighting(params, -n)) : 0.0f;
+    r->vertex[i].need_back =
+        back && n_dot_v < 0.0f ? -n_dot_v * ink.at(lighting(params, -n)) : 0.0f;
     r->vertex_outside[i] = uint8_t(r->vertex[i].outside);
     r->vertex_need[i] = r->vertex[i].need;
     r->vertex_w[i] = c.w;
 }
 
 void classify_vertices(RefinementMesh* r, const MeshView& mesh, const float* positions,
-                       const float* normals, const SizeParams& params) {
+                       const float* normals, const SizeParams& params, bool back) {
     const InkTable ink(params);
     for (uint32_t i = 0; i < mesh.vertex_count; ++i)
-        classify_vertex(r, positions, normals, params, ink, i);
+        classify_vertex(r, positions, normals, params, ink, back, i);
 }
 
-// The same over the listed vertices, in ranges over the thread pool (each writes only its own
-// vertices' entries: byte-identical for any thread count).
+// The same over the listed vertices (the points domain: no back side), in ranges over the
+// thread pool (each writes only its own vertices' entries: byte-identical for any thread count).
 struct ClassifyTask {
     RefinementMesh* r;
     const float* positions;
@@ -326,7 +328,7 @@ struct ClassifyTask {
 void classify_range(void* context, uint32_t begin, uint32_t end) {
     const ClassifyTask& k = *static_cast<const ClassifyTask*>(context);
     for (uint32_t j = begin; j < end; ++j)
-        classify_vertex(k.r, k.positions, k.normals, *k.params, *k.ink, k.list[j]);
+        classify_vertex(k.r, k.positions, k.normals, *k.params, *k.ink, false, k.list[j]);
 }
 
 // Triangle t for one pass: skips it when the wanted density stays under what the bake already
@@ -403,14 +405,36 @@ struct ProbeTask {
     RefinementCull* cull;
 };
 
+// Whether no triangle of active cluster k can pass refine_one_triangle's density test: the
+// cull's bound on stretch_t / lower_t (ratio_bound) times the density its classified corners
+// give, their largest need and nearest w (a triangle's need is the largest at its corners, its
+// w the nearest one's), with the cull's slack against rounding. The cull bounded the need by
+// the hosts' normals and the w by their box; the corners' own values are what the triangles
+// read, so this is the cull's test, tighter (runtime/refinement_cull.h).
+bool cluster_cannot_refine(const RefinementMesh& r, const Traversal& s, const RefinementCull& c,
+                           uint32_t k) {
+    float need = 0.0f, w = INFINITY;
+    const float* vneed = r.vertex_need.get();
+    const float* vw = r.vertex_w.get();
+    for (uint32_t j = c.corner_begin[k]; j < c.corner_begin[k + 1]; ++j) {
+        need = std::max(need, vneed[c.corner[j]]);
+        w = std::min(w, vw[c.corner[j]]);
+    }
+    w = std::max(w, s.near_w);
+    const float density = (1.0f + kCullSlack) * need * s.focal2_over_dot / (w * w);
+    return density * c.ratio_bound[k] < 1.0f;
+}
+
 void probe_range(void* context, uint32_t begin, uint32_t end) {
     const ProbeTask& k = *static_cast<const ProbeTask*>(context);
     Traversal s = *k.s;
     s.scale = 1.0f;
     s.probe = k.cull->candidate.get();
-    const RefinementCull& c = *k.cull;
+    RefinementCull& c = *k.cull;
     for (uint32_t j = begin; j < end; ++j) {
         const uint32_t cluster = c.active_list[j];
+        c.probed[cluster] = !cluster_cannot_refine(*k.r, s, c, cluster);
+        if (!c.probed[cluster]) continue;
         for (uint32_t i = c.tri_begin[cluster]; i < c.tri_begin[cluster + 1]; ++i) {
             const uint32_t t = c.triangles[i];
             s.probe[t] = 0;
@@ -432,6 +456,7 @@ uint32_t probe_triangles(RefinementMesh* r, const Traversal& s, bool stretch, Re
     uint32_t n = 0;
     for (uint32_t j = 0; j < cull->active_count; ++j) {
         const uint32_t cluster = cull->active_list[j];
+        if (!cull->probed[cluster]) continue;
         for (uint32_t i = cull->tri_begin[cluster]; i < cull->tri_begin[cluster + 1]; ++i)
             if (cull->candidate[cull->triangles[i]]) cull->refine_list[n++] = cull->triangles[i];
     }
@@ -507,7 +532,7 @@ void refine_points(RefinementMesh* r, const MeshView& mesh, const float* positio
                    const float* normals, const uint8_t* double_sided, const SizeParams& params,
                    bool stretch, RefinedPoints* out, RefinementStats* stats) {
     out->count = 0;
-    classify_vertices(r, mesh, positions, normals, params);
+    classify_vertices(r, mesh, positions, normals, params, double_sided != nullptr);
     refine_passes(r, mesh, positions, normals, double_sided, params, stretch, out, stats, nullptr,
                   nullptr);
 }

@@ -147,6 +147,7 @@ uint32_t refinement_cull(RefinementCull* c, const MeshView& host, const float* p
         c->active[k] = 0;
         const float lower = stretch ? c->lower_stretch[k] : c->lower_rest[k];
         if (!(lower < INFINITY)) continue;  // no triangle with an area
+        float ratio = INFINITY;             // the bound on stretch_t / lower_t, if any
         if (c->lower_rest[k] >= 0.0f) {     // every corner lies in its host: the box holds
             glm::vec3 lo(INFINITY), hi(-INFINITY);
             bool finite = true;
@@ -160,6 +161,7 @@ uint32_t refinement_cull(RefinementCull* c, const MeshView& host, const float* p
             float w_min = 0.0f;
             if (finite && box_outside(params.view_projection, lo, hi, &w_min)) continue;
             if (finite) {
+                ratio = stretch ? INFINITY : 1.0f / lower;
                 const float w = std::max(w_min, near_w);
                 const uint32_t h = c->host_begin[k], hn = c->host_begin[k + 1] - h;
                 const float need = posed_normals
@@ -175,12 +177,18 @@ uint32_t refinement_cull(RefinementCull* c, const MeshView& host, const float* p
                     // |posed edge| <= L g + gap <= (L + gap / g_min) g
                     const float l = std::sqrt(l2) + gap / c->min_path[k];
                     if (density * l * l < lower) continue;
+                    ratio = l * l / lower;
                 }
                 // Second chance: the affine map nearest the hosts, and how far they are from it.
-                if (stretch && density * affine_ratio(*c, host, posed, k) < 1.0f) continue;
+                if (stretch) {
+                    const float affine = affine_ratio(*c, host, posed, k);
+                    if (density * affine < 1.0f) continue;
+                    ratio = std::min(ratio, affine);
+                }
             }
         }
         c->active[k] = 1;
+        c->ratio_bound[k] = ratio;
         c->active_list[c->active_count++] = k;
         for (uint32_t j = c->corner_begin[k]; j < c->corner_begin[k + 1]; ++j) {
             const uint32_t i = c->corner[j];

@@ -66,6 +66,13 @@ struct RefinementCull {
     Buffer<float> sigma;           // per render triangle: its squared stretch bound this frame
     Buffer<uint32_t> sigma_frame;  // per render triangle: the frame sigma was computed in
     uint32_t frame = 0;
+    // Per active cluster: an upper bound on max_t stretch_t / lower_t over its triangles (1 /
+    // min lower_t with relevance updates off; INFINITY: none), the factor the cull multiplied
+    // its density bound by; refine_points_culled multiplies the density its classified corners
+    // give (their exact need and nearest w) by it, and probes only the clusters it cannot skip
+    // (probed: 1).
+    Buffer<float> ratio_bound;
+    Buffer<uint8_t> probed;
     Buffer<uint32_t> active_list;  // the active clusters, ascending (active_count)
     Buffer<uint32_t> refine_list;  // refine_points_culled: the triangles it refines, ascending
     uint32_t active_count = 0;

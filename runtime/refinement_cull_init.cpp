@@ -443,6 +443,7 @@ Status refinement_cull_init(RefinementCull* c, const MeshView& domain, const Mes
     if (!alloc(&c->lower_stretch, clusters) || !alloc(&c->lower_rest, clusters) ||
         !alloc(&c->affine, size_t(clusters) * 3) || !alloc(&c->min_path, clusters) ||
         !alloc(&c->bind_gram, size_t(host.triangle_count) * 3) || !alloc(&c->active, clusters) ||
+        !alloc(&c->ratio_bound, clusters) || !alloc(&c->probed, clusters) ||
         !alloc(&c->list, points.point_count) || !alloc(&c->candidate, n) ||
         !alloc(&c->active_list, clusters) || !alloc(&c->refine_list, n) ||
         !alloc(&c->sigma, host.triangle_count) || !alloc(&c->sigma_frame, host.triangle_count) ||

@@ -78,6 +78,7 @@ void RefinementCull::check_exact(const stipple::Asset& asset, int cases, int min
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     const float zooms[] = {0.25f, 0.5f, 1.0f, 1.5f, 2.0f, 4.0f, 8.0f, 16.0f};
     int all_skipped = 0, some_skipped = 0, added = 0, added_partly_skipped = 0, staged = 0;
+    int added_unprobed = 0;
     for (int k = 0; k < cases; ++k) {
         stipple::FrameConfig view = config;
         view.zoom = zooms[k % 8];
@@ -133,6 +134,9 @@ void RefinementCull::check_exact(const stipple::Asset& asset, int cases, int min
             EXPECT_TRUE(same_points(full, culled))
                 << "case " << k << ": zoom " << view.zoom << ", " << full.out.count << " vs "
                 << culled.out.count << " points";
+            uint32_t unprobed = 0;  // active clusters whose classified corners ruled them out
+            for (uint32_t j = 0; j < active; ++j) unprobed += !r.cull.probed[r.cull.active_list[j]];
+            added_unprobed += full.out.count > 0 && unprobed > 0;
         }
         some_skipped += active < r.cull.cluster_count;
         added += full.out.count > 0;
@@ -145,10 +149,11 @@ void RefinementCull::check_exact(const stipple::Asset& asset, int cases, int min
     }
     std::printf(
         "%d views: stage ran in %d; every cluster skipped in %d, some in %d; points "
-        "added in %d (%d of them with clusters skipped)\n",
-        cases, staged, all_skipped, some_skipped, added, added_partly_skipped);
+        "added in %d (%d of them with clusters skipped, %d with active clusters not probed)\n",
+        cases, staged, all_skipped, some_skipped, added, added_partly_skipped, added_unprobed);
     EXPECT_GE(all_skipped, min_all_skipped);
     EXPECT_GE(added_partly_skipped, min_added_partly);
+    EXPECT_GE(added_unprobed, min_added_partly);  // the probe's own early-out was exercised
     stipple::pipeline_destroy(&p);
 }
 
