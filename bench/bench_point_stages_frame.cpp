@@ -10,6 +10,7 @@
 // share one asset and run the same frames; their stages are byte-identical (point_stages.h).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -76,6 +77,7 @@ struct Case {
     Run runs[2];                              // 1 and 2 threads
     std::unique_ptr<stipple::Pipeline> full;  // level of detail off: the check
     int differing = -1;                       // frames whose drawn dots differ from `full`
+    double line_bytes = 0;  // per frame (check_frames): the 64-byte lines the stages touch
 };
 
 bool parse_case(const char* arg, Case* c) {
@@ -119,10 +121,48 @@ bool same_dots(const stipple::Pipeline& a, const stipple::Pipeline& b) {
            std::memcmp(a.draw_sizes.get(), b.draw_sizes.get(), n * 4) == 0;
 }
 
+// The 64-byte lines elements ids[0 .. n) (ascending) of `size` bytes each occupy in an array
+// taken to start on a line (runtime/memory.h aligns buffers to 16 bytes: a line's worth of
+// error per run of elements at most).
+double lines_of(const uint32_t* ids, uint32_t n, uint32_t size) {
+    double lines = 0;
+    uint64_t last = ~uint64_t(0);
+    for (uint32_t j = 0; j < n; ++j) {
+        const uint64_t first = uint64_t(ids[j]) * size / 64;
+        const uint64_t end = (uint64_t(ids[j]) * size + size - 1) / 64 + 1;  // past the last
+        lines += double(end - (first == last ? first + 1 : first));
+        last = end - 1;
+    }
+    return lines;
+}
+
+// What the stages of stage_bytes move at the granularity of the memory system: each array's
+// distinct 64-byte lines that hold an element they read or write, a written line counted
+// twice (its read for ownership and its write-back), as if nothing stayed cached from the last
+// frame. Scattered records share lines with points not run, so this is more than the bytes.
+double frame_line_bytes(const stipple::Pipeline& p) {
+    const stipple::PointClusters& c = p.clusters;
+    const bool lod = p.config.lod && c.cluster_count > 0;
+    if (!lod || !p.point_hosts || !p.neighbour_quads) return 0;
+    const uint32_t *placed = c.placed.get(), *run = c.run.get();
+    const uint32_t np = c.placed_count, nr = c.run_count;
+    double lines = lines_of(placed, np, 16)            // host records, read
+                   + 2 * lines_of(placed, np, 12) * 2  // positions and normals, written
+                   + lines_of(run, nr, 16)             // neighbour records
+                   + lines_of(run, nr, 4)              // scale
+                   + 2 * lines_of(run, nr, 4) * 2;     // radius and size, written
+    if (p.vertex_pairs) {
+        const double v = p.asset->mesh.vertex_count;
+        lines += std::ceil(v * 24 / 64) + 2 * std::ceil(v * 32 / 64);  // posed in, pairs out
+    }
+    return lines * 64;
+}
+
 // The frames of a round with level of detail on (1 thread) against the full stages: the
 // drawn dots (positions, sizes, order) must be the same bytes (docs/lod.md).
 void check_frames(Case* c) {
     c->differing = 0;
+    c->line_bytes = 0;
     for (int k = 0; k < kFrames; ++k) {
         stipple::AnimationState state;
         state.clip = c->clip;
@@ -130,6 +170,7 @@ void check_frames(Case* c) {
         stipple::pipeline_update(c->runs[0].pipeline.get(), state, nullptr);
         stipple::pipeline_update(c->full.get(), state, nullptr);
         c->differing += !same_dots(*c->runs[0].pipeline, *c->full);
+        c->line_bytes += frame_line_bytes(*c->runs[0].pipeline) / kFrames;
     }
 }
 
@@ -239,14 +280,17 @@ void print_bounds(const std::vector<Case>& cases, const Series& bw) {
         "size; not the selection, not the refinement) against the bound of the bytes they "
         "stream (the vertex pass place's time holds included; \"points only\" leaves its bytes "
         "out, as this bench did before), per run point; and with the selection (its cluster and "
-        "triangle passes, whose bytes the bound does not count):\n\n",
+        "triangle passes, whose bytes the bound does not count); last, the bound of the 64-byte "
+        "lines those bytes lie on (each array's distinct lines, written ones twice: read for "
+        "ownership and write-back), what the memory system moves if nothing stays cached:\n\n",
         *std::max_element(bw.v.begin(), bw.v.end()), bw.median());
     std::printf(
         "| asset | bytes per frame | bound ms | 1 thread ms (min / median) | 1T / bound | "
         "1T / bound, points only | ns per run point 1T | bound ns per run point | 2 threads ms | "
         "1T / 2T (min, median) | "
-        "with select 1T ms | with select / bound |\n"
-        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+        "with select 1T ms | with select / bound | lines touched | 1T / bound of the lines |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
+        "| ---: |\n");
     const double best = *std::max_element(bw.v.begin(), bw.v.end());
     for (const Case& c : cases) {
         const Run& one = c.runs[0];
@@ -255,14 +299,15 @@ void print_bounds(const std::vector<Case>& cases, const Series& bw) {
         const double points_ms = stage_bytes(one, false) / best * 1e-6;
         std::printf(
             "| %s | %.2f MB | %.3f | %s | %.1f | %.1f | %.1f / %.1f | %.1f | %s | %.2f, %.2f | %s "
-            "| %.1f |\n",
+            "| %.1f | %.2f MB | %.1f |\n",
             c.name.c_str(), bytes * 1e-6, bound_ms, mm(one.ms[kStages]).c_str(),
             one.ms[kStages].min() / bound_ms, one.ms[kStages].min() / points_ms,
             one.ns_per_run_point.min(), one.ns_per_run_point.median(),
             bytes / best / std::max(one.run, 1.0), mm(two.ms[kStages]).c_str(),
             one.ms[kStages].min() / two.ms[kStages].min(),
             one.ms[kStages].median() / two.ms[kStages].median(), mm(one.ms[kStagesSelect]).c_str(),
-            one.ms[kStagesSelect].min() / bound_ms);
+            one.ms[kStagesSelect].min() / bound_ms, c.line_bytes * 1e-6,
+            one.ms[kStages].min() / (c.line_bytes / best * 1e-6));
     }
 }
 
