@@ -5,6 +5,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <new>
 #include <type_traits>
@@ -58,7 +59,9 @@ struct BufferRelease {
 template <typename T>
 using Buffer = std::unique_ptr<T[], BufferRelease>;
 
-// `count` (at least 1) default-constructed elements from the current allocator, or empty.
+// `count` (at least 1) default-constructed elements from the current allocator, or empty. The
+// bytes are zeroed first, so every page under a buffer is touched at init: no frame is the first
+// to write a page and pay the kernel's fault for it (tests/alloc/test_page_faults.cpp).
 template <typename T>
 Buffer<T> make_buffer(size_t count) {
     static_assert(std::is_trivially_destructible<T>::value, "buffers are released unrun");
@@ -68,6 +71,7 @@ Buffer<T> make_buffer(size_t count) {
     void* raw = allocate_bytes(a, count * sizeof(T));
     if (!raw) return Buffer<T>(nullptr, {a});
     T* items = static_cast<T*>(raw);
+    std::memset(raw, 0, count * sizeof(T));
     for (size_t i = 0; i < count; ++i) new (items + i) T;
     return Buffer<T>(items, {a});
 }
