@@ -58,6 +58,13 @@ void pipeline_refine_stage(Pipeline* p, bool lod, StageTimes* t, StageClock::tim
         MeshView domain = p->refinement_domain;
         domain.positions = p->point_positions.get();
         domain.normals = p->point_normals.get();
+        // Again with the corners' posed areas, before any corner is classified.
+        if (p->config.relevance_update &&
+            refinement_cull_posed(&cull, domain, domain.positions) == 0) {
+            p->refined_count = 0;
+            if (t) t->refine += ms_since(clock);
+            return;
+        }
         refine_points_culled(&p->refinement, domain, domain.positions, domain.normals,
                              p->size_params, p->config.relevance_update, &extra,
                              &p->refinement_stats, &p->pool);

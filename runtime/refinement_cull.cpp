@@ -119,6 +119,55 @@ bool box_outside(const glm::mat4& m, const glm::vec3& lo, const glm::vec3& hi, f
     return false;
 }
 
+// Paths cross seams: each crossing can add the largest gap between welded vertices' posed
+// positions (a path crosses at most kCullSpanPerEdge edges). +inf if a position is not finite.
+float seam_gap(const RefinementCull& c, const float* posed) {
+    float gap = 0.0f;
+    for (uint32_t j = 0; j < c.seam_count; ++j) {
+        const glm::vec3 d = glm::make_vec3(posed + size_t(c.seam[j * 2]) * 3) -
+                            glm::make_vec3(posed + size_t(c.seam[j * 2 + 1]) * 3);
+        const float len = glm::length(d);
+        gap = len == len && gap < len ? len : (len == len ? gap : INFINITY);
+    }
+    return gap * float(kCullSpanPerEdge) * (1.0f + kCullSlack);
+}
+
+// The active clusters' corners into c->list, each once, cluster by cluster.
+void list_corners(RefinementCull* c) {
+    c->list_count = 0;
+    for (uint32_t a = 0; a < c->active_count; ++a) {
+        const uint32_t k = c->active_list[a];
+        for (uint32_t j = c->corner_begin[k]; j < c->corner_begin[k + 1]; ++j) {
+            const uint32_t i = c->corner[j];
+            uint64_t& word = c->stamp[i / 64];
+            const uint64_t bit = uint64_t(1) << (i % 64);
+            if (!(word & bit)) word |= bit, c->list[c->list_count++] = i;  // each corner once
+        }
+    }
+    for (uint32_t j = 0; j < c->list_count; ++j) c->stamp[c->list[j] / 64] = 0;
+}
+
+// Whether a triangle of active cluster k can pass the full stage's density test, with its
+// exact posed area (the full stage's expression, from the same placed corners) and the cull's
+// bound on the rest: density_t <= density_bound (corners in the hosts' box, normals in their
+// cone), so stretched_t = |e1 x e2| / (2 area_t) density_t, against lower_t.
+bool posed_area_can_refine(const RefinementCull& c, const MeshView& domain, const float* positions,
+                           uint32_t k) {
+    const float density = c.density_bound[k] * (1.0f + kCullSlack);
+    if (!(density < INFINITY)) return true;
+    for (uint32_t j = c.tri_begin[k]; j < c.tri_begin[k + 1]; ++j) {
+        const float limit = c.cross_limit[j];
+        if (!(limit < INFINITY)) continue;  // no bind area: never refined
+        const uint32_t* tri = domain.indices + size_t(c.triangles[j]) * 3;
+        const glm::vec3 pa = glm::make_vec3(positions + size_t(tri[0]) * 3);
+        const glm::vec3 e1 = glm::make_vec3(positions + size_t(tri[1]) * 3) - pa;
+        const glm::vec3 e2 = glm::make_vec3(positions + size_t(tri[2]) * 3) - pa;
+        const glm::vec3 n = glm::cross(e1, e2);
+        if (!(density * std::sqrt(glm::dot(n, n)) < limit)) return true;  // NaN: kept
+    }
+    return false;
+}
+
 }  // namespace
 
 uint32_t refinement_cull(RefinementCull* c, const MeshView& host, const float* posed,
@@ -133,21 +182,13 @@ uint32_t refinement_cull(RefinementCull* c, const MeshView& host, const float* p
     const float focal = focal_pixels(params);
     const float dot_area = 0.785398163f * params.max_point_size * params.max_point_size;
     const float scale = (1.0f + kCullSlack) * focal * focal / dot_area;
-    // Paths cross seams: each crossing can add the largest gap between welded vertices'
-    // posed positions (a path crosses at most kCullSpanPerEdge edges).
-    float gap = 0.0f;
-    for (uint32_t j = 0; j < c->seam_count; ++j) {
-        const glm::vec3 d = glm::make_vec3(posed + size_t(c->seam[j * 2]) * 3) -
-                            glm::make_vec3(posed + size_t(c->seam[j * 2 + 1]) * 3);
-        const float len = glm::length(d);
-        gap = len == len && gap < len ? len : (len == len ? gap : INFINITY);
-    }
-    gap *= float(kCullSpanPerEdge) * (1.0f + kCullSlack);
+    const float gap = seam_gap(*c, posed);
     for (uint32_t k = 0; k < c->cluster_count; ++k) {
         c->active[k] = 0;
         const float lower = stretch ? c->lower_stretch[k] : c->lower_rest[k];
         if (!(lower < INFINITY)) continue;  // no triangle with an area
         float ratio = INFINITY;             // the bound on stretch_t / lower_t, if any
+        float density_bound = INFINITY;     // the bound on need_t focal^2 / (dot area w_t^2)
         if (c->lower_rest[k] >= 0.0f) {     // every corner lies in its host: the box holds
             glm::vec3 lo(INFINITY), hi(-INFINITY);
             bool finite = true;
@@ -163,19 +204,27 @@ uint32_t refinement_cull(RefinementCull* c, const MeshView& host, const float* p
             if (finite) {
                 ratio = stretch ? INFINITY : 1.0f / lower;
                 const float w = std::max(w_min, near_w);
+                // The stretch bound first, with the largest need (most clusters end there:
+                // the same decision as with the hosts' need bound, which is below it).
+                const bool paths = stretch && lower > 0.0f && gap < INFINITY;  // 0: no path
+                float l = 0.0f;
+                if (paths) {
+                    float l2 = 0.0f;
+                    for (uint32_t j = c->span_begin[k]; j < c->span_begin[k + 1]; ++j)
+                        l2 = std::max(l2, sigma2_once(c, host, posed, c->span[j]));
+                    // |posed edge| <= L g + gap <= (L + gap / g_min) g
+                    l = std::sqrt(l2) + gap / c->min_path[k];
+                    if (scale * ink.at(0.0f) / (w * w) * l * l < lower) continue;
+                }
                 const uint32_t h = c->host_begin[k], hn = c->host_begin[k + 1] - h;
                 const float need = posed_normals
                                        ? need_bound(posed_normals, c->host_vertex.get() + h, hn, lo,
                                                     hi, params, ink)
                                        : ink.at(0.0f);
                 const float density = scale * need / (w * w);
+                density_bound = density;
                 if (!stretch && density < lower) continue;
-                if (stretch && lower > 0.0f && gap < INFINITY) {  // 0: an edge without a path
-                    float l2 = 0.0f;
-                    for (uint32_t j = c->span_begin[k]; j < c->span_begin[k + 1]; ++j)
-                        l2 = std::max(l2, sigma2_once(c, host, posed, c->span[j]));
-                    // |posed edge| <= L g + gap <= (L + gap / g_min) g
-                    const float l = std::sqrt(l2) + gap / c->min_path[k];
+                if (paths) {
                     if (density * l * l < lower) continue;
                     ratio = l * l / lower;
                 }
@@ -189,16 +238,26 @@ uint32_t refinement_cull(RefinementCull* c, const MeshView& host, const float* p
         }
         c->active[k] = 1;
         c->ratio_bound[k] = ratio;
+        c->density_bound[k] = density_bound;
         c->active_list[c->active_count++] = k;
-        for (uint32_t j = c->corner_begin[k]; j < c->corner_begin[k + 1]; ++j) {
-            const uint32_t i = c->corner[j];
-            uint64_t& word = c->stamp[i / 64];
-            const uint64_t bit = uint64_t(1) << (i % 64);
-            if (!(word & bit)) word |= bit, c->list[c->list_count++] = i;  // each corner once
-        }
     }
-    for (uint32_t j = 0; j < c->list_count; ++j) c->stamp[c->list[j] / 64] = 0;
+    list_corners(c);
     return c->active_count;
+}
+
+uint32_t refinement_cull_posed(RefinementCull* c, const MeshView& domain, const float* positions) {
+    uint32_t kept = 0;
+    for (uint32_t j = 0; j < c->active_count; ++j) {
+        const uint32_t k = c->active_list[j];
+        if (posed_area_can_refine(*c, domain, positions, k))
+            c->active_list[kept++] = k;
+        else
+            c->active[k] = 0;
+    }
+    if (kept == c->active_count) return kept;
+    c->active_count = kept;
+    list_corners(c);
+    return kept;
 }
 
 }  // namespace stipple

@@ -22,6 +22,10 @@
 // A cluster whose bound stays under min_t lower_t (over its triangles) is skipped; no point of
 // it could have been added, so the stage's output is byte-identical whether it runs or not
 // (tests/runtime/test_refinement_cull.cpp checks that against the full stage).
+// Once the active clusters' corners are placed, refinement_cull_posed tests them again with
+// each triangle's exact posed area in place of the stretch bound (which sums worst cases over
+// the cluster's paths: 2-24x the largest stretch on the CesiumMan walk), before any corner is
+// classified (docs/performance.md, eleventh round).
 #pragma once
 #include <cstdint>
 
@@ -52,7 +56,10 @@ struct RefinementCull {
     // Per cluster, the largest over its triangles of 1 / lower_t, (|e1| + |e2|) / (2 A lower_t)
     // and 1 / (2 A lower_t): the second bound on the stretch (refinement_cull.cpp).
     Buffer<float> affine;
-    Buffer<float> min_path;   // per cluster: its triangles' shortest edge path bound
+    Buffer<float> min_path;  // per cluster: its triangles' shortest edge path bound
+    // Along `triangles`: 2 bind area_t lower_t (+inf where the triangle has no bind area: the
+    // full stage skips it), refinement_cull_posed's limit on |posed e1 x e2| times the density.
+    Buffer<float> cross_limit;
     Buffer<float> bind_gram;  // per render triangle: e1.e1, e1.e2, e2.e2 (bind pose)
     // Pairs of render vertices at one bind position (seams); paths cross them only while both
     // pose to the same point.
@@ -72,6 +79,9 @@ struct RefinementCull {
     // give (their exact need and nearest w) by it, and probes only the clusters it cannot skip
     // (probed: 1).
     Buffer<float> ratio_bound;
+    // Per active cluster: the bound on need_t focal^2 / (dot area w_t^2) the cull took (with its
+    // slack; +inf: none), for refinement_cull_posed.
+    Buffer<float> density_bound;
     Buffer<uint8_t> probed;
     Buffer<uint32_t> active_list;  // the active clusters, ascending (active_count)
     Buffer<uint32_t> refine_list;  // refine_points_culled: the triangles it refines, ascending
@@ -96,5 +106,12 @@ struct RefinementCull {
 uint32_t refinement_cull(RefinementCull* c, const MeshView& host, const float* posed,
                          const float* posed_normals, const SizeParams& params, bool stretch,
                          float near_w);
+
+// After refinement_cull (stretch on: relevance updates), with the listed corners placed
+// (`positions`: the points domain's vertices, this frame): keeps the active clusters where
+// some triangle t passes density_bound * |posed e1 x e2| >= 2 bind area_t lower_t (with
+// the cull's slack; the full stage's test with the exact stretch and the cull's need and w
+// bounds), relists their corners and returns how many are active.
+uint32_t refinement_cull_posed(RefinementCull* c, const MeshView& domain, const float* positions);
 
 }  // namespace stipple

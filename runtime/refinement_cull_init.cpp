@@ -387,6 +387,10 @@ void cluster_constants(RefinementCull* c, const TriangleBounds& b, const float* 
         for (uint32_t j = tri_begin[k]; j < tri_begin[k + 1]; ++j) {
             const uint32_t t = order[j];
             rest = std::min(rest, b.lower[size_t(t) * 2]);
+            // refinement_cull_posed's limit (a corner off its host, lower_t -1: the cluster
+            // keeps no density bound, the limit is not read)
+            c->cross_limit[j] =
+                bind_area[t] > 0.0f ? 2.0f * bind_area[t] * b.lower[size_t(t) * 2] : INFINITY;
             stretched = std::min(stretched, b.lower[size_t(t) * 2 + 1]);
             for (int i = 0; i < 3; ++i) most[i] = std::max(most[i], b.terms[size_t(t) * 3 + i]);
             if (bind_area[t] > 0.0f) path = std::min(path, b.shortest[t]);
@@ -444,6 +448,7 @@ Status refinement_cull_init(RefinementCull* c, const MeshView& domain, const Mes
         !alloc(&c->affine, size_t(clusters) * 3) || !alloc(&c->min_path, clusters) ||
         !alloc(&c->bind_gram, size_t(host.triangle_count) * 3) || !alloc(&c->active, clusters) ||
         !alloc(&c->ratio_bound, clusters) || !alloc(&c->probed, clusters) ||
+        !alloc(&c->density_bound, clusters) || !alloc(&c->cross_limit, n) ||
         !alloc(&c->list, points.point_count) || !alloc(&c->candidate, n) ||
         !alloc(&c->active_list, clusters) || !alloc(&c->refine_list, n) ||
         !alloc(&c->sigma, host.triangle_count) || !alloc(&c->sigma_frame, host.triangle_count) ||

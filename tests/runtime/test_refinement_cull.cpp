@@ -1,7 +1,8 @@
 // The refinement's early-out (runtime/refinement_cull.h) is exact: over random views, zooms,
 // poses and tones on the CesiumMan walk, the culled refinement (only the clusters the test
 // leaves active, their corners placed) gives byte for byte the points the full stage gives
-// with every baked point placed, and where it skips every cluster the full stage adds none.
+// with every baked point placed, and where it skips every cluster the full stage adds none;
+// with relevance updates, after the posed-area test (refinement_cull_posed) too.
 // Far views skip clusters (whole frames), close-ups add points.
 #include <gtest/gtest.h>
 
@@ -78,7 +79,7 @@ void RefinementCull::check_exact(const stipple::Asset& asset, int cases, int min
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     const float zooms[] = {0.25f, 0.5f, 1.0f, 1.5f, 2.0f, 4.0f, 8.0f, 16.0f};
     int all_skipped = 0, some_skipped = 0, added = 0, added_partly_skipped = 0, staged = 0;
-    int added_unprobed = 0;
+    int added_unprobed = 0, posed_skipped = 0, all_posed_skipped = 0;
     for (int k = 0; k < cases; ++k) {
         stipple::FrameConfig view = config;
         view.zoom = zooms[k % 8];
@@ -119,10 +120,16 @@ void RefinementCull::check_exact(const stipple::Asset& asset, int cases, int min
         Extra full(config.refinement_budget), culled(config.refinement_budget);
         stipple::refine_points(&r, domain, domain.positions, domain.normals, nullptr, p.size_params,
                                stretch, &full.out, &full.stats);
-        const uint32_t active = stipple::refinement_cull(
+        const uint32_t bounded = stipple::refinement_cull(
             &r.cull, asset.mesh, p.vertex_positions.get(),
             asset.sides.triangle_double_sided ? nullptr : p.vertex_normals.get(), p.size_params,
             stretch, stipple::refinement_near_w(p.size_params));
+        // With relevance updates, again with the corners' posed areas (every corner is placed).
+        const uint32_t active = stretch && bounded > 0 ? stipple::refinement_cull_posed(
+                                                             &r.cull, domain, domain.positions)
+                                                       : bounded;
+        posed_skipped += active < bounded;
+        all_posed_skipped += bounded > 0 && active == 0;
         if (active == 0) {
             EXPECT_EQ(full.out.count, 0u) << "case " << k << ": every cluster skipped";
             EXPECT_EQ(full.stats.wanted, 0u) << "case " << k;
@@ -149,9 +156,12 @@ void RefinementCull::check_exact(const stipple::Asset& asset, int cases, int min
     }
     std::printf(
         "%d views: stage ran in %d; every cluster skipped in %d, some in %d; points "
-        "added in %d (%d of them with clusters skipped, %d with active clusters not probed)\n",
-        cases, staged, all_skipped, some_skipped, added, added_partly_skipped, added_unprobed);
+        "added in %d (%d of them with clusters skipped, %d with active clusters not probed); "
+        "the posed areas skipped clusters in %d (all in %d)\n",
+        cases, staged, all_skipped, some_skipped, added, added_partly_skipped, added_unprobed,
+        posed_skipped, all_posed_skipped);
     EXPECT_GE(all_skipped, min_all_skipped);
+    EXPECT_GE(posed_skipped, min_added_partly);  // the posed-area test was exercised
     EXPECT_GE(added_partly_skipped, min_added_partly);
     EXPECT_GE(added_unprobed, min_added_partly);  // the probe's own early-out was exercised
     stipple::pipeline_destroy(&p);
