@@ -14,6 +14,7 @@
 #include "runtime/camera.h"
 #include "runtime/frame_pipeline.h"
 #include "tests/alloc/alloc_counter.h"
+#include "tests/alloc/cesium_pipeline.h"
 #include "tests/common/fixtures.h"
 
 using stipple::test::g_allocations;
@@ -22,26 +23,17 @@ using stipple::test::g_counting;
 namespace {
 
 TEST(FrameAllocation, FramesAllocateNothingAfterLoad) {
-    stipple::Asset asset;
-    std::string error;
-    ASSERT_TRUE(stipple::test::load_baked(
-        stipple::test::baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 10000"), &asset,
-        &error))
-        << error;
-
-    stipple::test::HeadlessGl gl;
-    ASSERT_TRUE(gl.open(&error)) << error;
-    auto pipeline = std::make_unique<stipple::Pipeline>();
-    const stipple::Status init = stipple::pipeline_init(pipeline.get(), asset, gl.gl(), {});
-    ASSERT_TRUE(init.ok()) << init.message;
+    stipple::test::CesiumPipeline cesium;
+    ASSERT_TRUE(stipple::test::open_cesium("--points 10000", {}, &cesium));
+    stipple::Pipeline* pipeline = cesium.pipeline.get();
     std::vector<uint8_t> rgba(640 * 480 * 4);
-    stipple::pipeline_frame(pipeline.get(), 0, 0.0f, nullptr);  // first draw compiles shaders
+    stipple::pipeline_frame(pipeline, 0, 0.0f, nullptr);  // first draw compiles shaders
 
     stipple::StageTimes times;
     g_allocations = 0;
     g_counting = true;
     for (int f = 0; f < 200; ++f) {
-        stipple::pipeline_frame(pipeline.get(), 0, float(f) / 30.0f, &times);
+        stipple::pipeline_frame(pipeline, 0, float(f) / 30.0f, &times);
         stipple::renderer_read_color(&pipeline->renderer, rgba.data());
     }
     g_counting = false;
@@ -57,8 +49,8 @@ TEST(FrameAllocation, FramesAllocateNothingAfterLoad) {
         stipple::FrameConfig view = pipeline->config;
         view.zoom = 1.0f + 15.0f * float(f) / 59.0f;
         view.constant_tone = 0.6f;
-        ASSERT_TRUE(stipple::pipeline_set_view(pipeline.get(), view).ok());
-        stipple::pipeline_frame(pipeline.get(), 0, float(f) / 30.0f, &times);
+        ASSERT_TRUE(stipple::pipeline_set_view(pipeline, view).ok());
+        stipple::pipeline_frame(pipeline, 0, float(f) / 30.0f, &times);
         stipple::renderer_read_color(&pipeline->renderer, rgba.data());
         most_refined = std::max(most_refined, pipeline->refined_count);
     }
@@ -66,7 +58,7 @@ TEST(FrameAllocation, FramesAllocateNothingAfterLoad) {
     EXPECT_EQ(g_allocations.load(), 0);
     EXPECT_GT(most_refined, 10000u);  // the refinement did real work
 
-    stipple::pipeline_destroy(pipeline.get());
+    stipple::pipeline_destroy(pipeline);
 }
 
 TEST(FrameAllocation, FramesWithStrokesAllocateNothing) {

@@ -11,6 +11,7 @@
 #include "platform/headless_context.h"
 #include "runtime/frame_pipeline.h"
 #include "tests/alloc/alloc_counter.h"
+#include "tests/alloc/cesium_pipeline.h"
 #include "tests/common/fixtures.h"
 
 using stipple::test::g_allocations;
@@ -19,23 +20,15 @@ using stipple::test::g_counting;
 namespace {
 
 TEST(FrameAllocation, GpuPathFramesAllocateNothing) {
-    stipple::Asset asset;
-    std::string error;
-    ASSERT_TRUE(stipple::test::load_baked(
-        stipple::test::baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 10000"), &asset,
-        &error))
-        << error;
-    stipple::test::HeadlessGl gl;
-    ASSERT_TRUE(gl.open(&error)) << error;
     stipple::FrameConfig config;
     config.width = 160;
     config.height = 120;
     config.path = stipple::FramePath::gpu;
-    auto pipeline = std::make_unique<stipple::Pipeline>();
-    const stipple::Status init = stipple::pipeline_init(pipeline.get(), asset, gl.gl(), config);
-    ASSERT_TRUE(init.ok()) << init.message;
+    stipple::test::CesiumPipeline cesium;
+    ASSERT_TRUE(stipple::test::open_cesium("--points 10000", config, &cesium));
+    stipple::Pipeline* pipeline = cesium.pipeline.get();
     std::vector<uint8_t> rgba(size_t(config.width) * size_t(config.height) * 4);
-    stipple::pipeline_frame(pipeline.get(), 0, 0.0f, nullptr);
+    stipple::pipeline_frame(pipeline, 0, 0.0f, nullptr);
 
     stipple::StageTimes times;
     g_allocations = 0;
@@ -45,9 +38,9 @@ TEST(FrameAllocation, GpuPathFramesAllocateNothing) {
             stipple::FrameConfig view = pipeline->config;
             view.zoom = 1.0f + float(f) / 250.0f;
             view.constant_tone = f % 200 == 0 ? 0.4f : stipple::kLightingTone;
-            ASSERT_TRUE(stipple::pipeline_set_view(pipeline.get(), view).ok());
+            ASSERT_TRUE(stipple::pipeline_set_view(pipeline, view).ok());
         }
-        stipple::pipeline_frame(pipeline.get(), 0, float(f) / 30.0f, &times);
+        stipple::pipeline_frame(pipeline, 0, float(f) / 30.0f, &times);
         stipple::renderer_read_color(&pipeline->renderer, rgba.data());
     }
     g_counting = false;
@@ -56,7 +49,7 @@ TEST(FrameAllocation, GpuPathFramesAllocateNothing) {
     size_t dark = 0;
     for (size_t i = 0; i < rgba.size(); i += 4) dark += rgba[i] < 128;
     EXPECT_GT(dark, 50u);
-    stipple::pipeline_destroy(pipeline.get());
+    stipple::pipeline_destroy(pipeline);
 }
 
 }  // namespace

@@ -7,11 +7,9 @@
 #include <sys/resource.h>
 
 #include <algorithm>
-#include <memory>
-#include <string>
 
 #include "runtime/frame_pipeline.h"
-#include "tests/common/fixtures.h"
+#include "tests/alloc/cesium_pipeline.h"
 
 namespace {
 
@@ -22,21 +20,13 @@ long minor_faults() {
 }
 
 TEST(PipelineMemory, FramesTouchNoNewPages) {
-    stipple::Asset asset;
-    std::string error;
-    ASSERT_TRUE(stipple::test::load_baked(
-        stipple::test::baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 20000"), &asset,
-        &error))
-        << error;
-    stipple::test::HeadlessGl gl;
-    ASSERT_TRUE(gl.open(&error)) << error;
-    auto pipeline = std::make_unique<stipple::Pipeline>();
     stipple::FrameConfig config;
     config.refinement_budget = 200000;  // close-ups write far into the refined points' buffers
-    const stipple::Status init = stipple::pipeline_init(pipeline.get(), asset, gl.gl(), config);
-    ASSERT_TRUE(init.ok()) << init.message;
+    stipple::test::CesiumPipeline cesium;
+    ASSERT_TRUE(stipple::test::open_cesium("--points 20000", config, &cesium));
+    stipple::Pipeline* pipeline = cesium.pipeline.get();
     stipple::AnimationState state;
-    stipple::pipeline_update(pipeline.get(), state, nullptr);  // the stack and the code's pages
+    stipple::pipeline_update(pipeline, state, nullptr);  // the stack and the code's pages
 
     uint32_t most_refined = 0;
     const long before = minor_faults();
@@ -44,9 +34,9 @@ TEST(PipelineMemory, FramesTouchNoNewPages) {
         stipple::FrameConfig view = pipeline->config;
         view.zoom = 0.5f + 7.5f * float(f % 100) / 99.0f;  // far (cut) to close (culled, refined)
         view.yaw_degrees = float(f) * 3.0f;
-        ASSERT_TRUE(stipple::pipeline_set_view(pipeline.get(), view).ok());
+        ASSERT_TRUE(stipple::pipeline_set_view(pipeline, view).ok());
         state.time = float(f) / 30.0f;
-        stipple::pipeline_update(pipeline.get(), state, nullptr);
+        stipple::pipeline_update(pipeline, state, nullptr);
         most_refined = std::max(most_refined, pipeline->refined_count);
     }
     const long faults = minor_faults() - before;
@@ -54,7 +44,7 @@ TEST(PipelineMemory, FramesTouchNoNewPages) {
     // A page is 4 KiB: a few faults (the C library, the kernel's own bookkeeping) are allowed;
     // buffers first touched in frames gave hundreds.
     EXPECT_LE(faults, 16) << "minor page faults in 200 frames";
-    stipple::pipeline_destroy(pipeline.get());
+    stipple::pipeline_destroy(pipeline);
 }
 
 }  // namespace

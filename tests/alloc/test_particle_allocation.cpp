@@ -8,6 +8,7 @@
 
 #include "runtime/particle_frame.h"
 #include "tests/alloc/alloc_counter.h"
+#include "tests/alloc/cesium_pipeline.h"
 #include "tests/common/fixtures.h"
 
 using stipple::test::g_allocations;
@@ -16,14 +17,10 @@ using stipple::test::g_counting;
 namespace {
 
 TEST(ParticleAllocation, ParticleFramesAllocateNothingAfterInit) {
-    stipple::Asset asset;
-    std::string error;
-    ASSERT_TRUE(stipple::test::load_baked(
-        stipple::test::baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 10000"), &asset,
-        &error))
-        << error;
-    stipple::test::HeadlessGl gl;
-    ASSERT_TRUE(gl.open(&error)) << error;
+    stipple::test::CesiumPipeline cesium;  // the asset and the context; a pipeline per style
+    ASSERT_TRUE(stipple::test::open_cesium("--points 10000", &cesium));
+    const stipple::Asset& asset = cesium.asset;
+    stipple::test::HeadlessGl& gl = cesium.gl;
     for (const char* name : {"painterly-long", "graftals", "two-tone"}) {
         const stipple::ParticleStyle* style = stipple::find_particle_style(name);
         ASSERT_NE(style, nullptr);

@@ -12,6 +12,7 @@
 #include "runtime/frame_pipeline.h"
 #include "runtime/point_stages.h"
 #include "tests/alloc/alloc_counter.h"
+#include "tests/alloc/cesium_pipeline.h"
 #include "tests/common/fixtures.h"
 
 using stipple::test::g_allocations;
@@ -20,22 +21,14 @@ using stipple::test::g_counting;
 namespace {
 
 TEST(ThreadAllocation, FramesOnThreeThreadsAllocateNothing) {
-    stipple::Asset asset;
-    std::string error;
-    ASSERT_TRUE(stipple::test::load_baked(
-        stipple::test::baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 60000"), &asset,
-        &error))
-        << error;
-    stipple::test::HeadlessGl gl;
-    ASSERT_TRUE(gl.open(&error)) << error;
     stipple::FrameConfig config;
     config.threads = 3;
-    auto pipeline = std::make_unique<stipple::Pipeline>();
-    const stipple::Status init = stipple::pipeline_init(pipeline.get(), asset, gl.gl(), config);
-    ASSERT_TRUE(init.ok()) << init.message;
+    stipple::test::CesiumPipeline cesium;
+    ASSERT_TRUE(stipple::test::open_cesium("--points 60000", config, &cesium));
+    stipple::Pipeline* pipeline = cesium.pipeline.get();
     ASSERT_EQ(pipeline->pool.threads, 3);
     std::vector<uint8_t> rgba(640 * 480 * 4);
-    stipple::pipeline_frame(pipeline.get(), 0, 0.0f, nullptr);
+    stipple::pipeline_frame(pipeline, 0, 0.0f, nullptr);
 
     g_allocations = 0;
     g_counting = true;
@@ -44,15 +37,15 @@ TEST(ThreadAllocation, FramesOnThreeThreadsAllocateNothing) {
         stipple::FrameConfig view = pipeline->config;
         view.zoom = 1.0f + 5.0f * float(f % 50) / 49.0f;  // full views to refining close-ups
         view.lod = f % 20 != 19;                          // and the full stages now and then
-        ASSERT_TRUE(stipple::pipeline_set_view(pipeline.get(), view).ok());
+        ASSERT_TRUE(stipple::pipeline_set_view(pipeline, view).ok());
         // pipeline_frame runs the point part on a worker beside the mesh pass,
         // pipeline_update (an application's frame) beside the line stages.
         if (f % 2 == 0)
-            stipple::pipeline_frame(pipeline.get(), 0, float(f) / 30.0f, nullptr);
+            stipple::pipeline_frame(pipeline, 0, float(f) / 30.0f, nullptr);
         else
-            stipple::pipeline_update(pipeline.get(), {0, float(f) / 30.0f}, nullptr);
+            stipple::pipeline_update(pipeline, {0, float(f) / 30.0f}, nullptr);
         if (f % 4 == 1) {  // and the stages split in ranges over the threads, as callers may
-            stipple::Pipeline* p = pipeline.get();
+            stipple::Pipeline* p = pipeline;
             const stipple::PointStageFrame sf = stipple::point_stage_frame(p);
             const stipple::PointClusters& c = p->clusters;
             stipple::point_stage_place(&p->pool, sf, c.placed.get(), c.placed_count);
@@ -66,7 +59,7 @@ TEST(ThreadAllocation, FramesOnThreeThreadsAllocateNothing) {
     EXPECT_EQ(g_allocations.load(), 0);
     EXPECT_GT(most_run, 3u * 2048u);  // ranges big enough to be split over the threads
     EXPECT_GT(pipeline->points_drawn, 100u);
-    stipple::pipeline_destroy(pipeline.get());
+    stipple::pipeline_destroy(pipeline);
 }
 
 }  // namespace
