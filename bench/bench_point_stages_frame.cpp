@@ -254,6 +254,16 @@ double bandwidth(std::vector<char>* src, std::vector<char>* dst) {
     return best;
 }
 
+// Per round: the stages' ms over the bound from that round's memcpy (the machine's bandwidth
+// moves between rounds; a ratio of two bests taken at different times can mix a quiet memcpy
+// with a busy frame).
+Series round_ratios(const Series& ms, const Series& bw, double bytes) {
+    Series r;
+    for (size_t k = 0; k < ms.v.size() && k < bw.v.size(); ++k)
+        r.v.push_back(ms.v[k] / (bytes / bw.v[k] * 1e-6));
+    return r;
+}
+
 std::string mm(const Series& s) {
     char text[48];
     std::snprintf(text, sizeof(text), "%.3f / %.3f", s.min(), s.median());
@@ -288,18 +298,21 @@ void print_bounds(const std::vector<Case>& cases, const Series& bw) {
         "| asset | bytes per frame | bound ms | 1 thread ms (min / median) | 1T / bound | "
         "1T / bound, points only | ns per run point 1T | bound ns per run point | 2 threads ms | "
         "1T / 2T (min, median) | "
-        "with select 1T ms | with select / bound | lines touched | 1T / bound of the lines |\n"
+        "with select 1T ms | with select / bound | lines touched | 1T / bound of the lines | "
+        "per round: 1T / bound, of the lines (min / median) |\n"
         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
-        "| ---: |\n");
+        "| ---: | ---: |\n");
     const double best = *std::max_element(bw.v.begin(), bw.v.end());
     for (const Case& c : cases) {
         const Run& one = c.runs[0];
         const Run& two = c.runs[1];
         const double bytes = stage_bytes(one, true), bound_ms = bytes / best * 1e-6;
         const double points_ms = stage_bytes(one, false) / best * 1e-6;
+        const Series per_round = round_ratios(one.ms[kStages], bw, bytes);
+        const Series per_round_lines = round_ratios(one.ms[kStages], bw, c.line_bytes);
         std::printf(
             "| %s | %.2f MB | %.3f | %s | %.1f | %.1f | %.1f / %.1f | %.1f | %s | %.2f, %.2f | %s "
-            "| %.1f | %.2f MB | %.1f |\n",
+            "| %.1f | %.2f MB | %.1f | %.1f / %.1f, %.1f / %.1f |\n",
             c.name.c_str(), bytes * 1e-6, bound_ms, mm(one.ms[kStages]).c_str(),
             one.ms[kStages].min() / bound_ms, one.ms[kStages].min() / points_ms,
             one.ns_per_run_point.min(), one.ns_per_run_point.median(),
@@ -307,7 +320,8 @@ void print_bounds(const std::vector<Case>& cases, const Series& bw) {
             one.ms[kStages].min() / two.ms[kStages].min(),
             one.ms[kStages].median() / two.ms[kStages].median(), mm(one.ms[kStagesSelect]).c_str(),
             one.ms[kStagesSelect].min() / bound_ms, c.line_bytes * 1e-6,
-            one.ms[kStages].min() / (c.line_bytes / best * 1e-6));
+            one.ms[kStages].min() / (c.line_bytes / best * 1e-6), per_round.min(),
+            per_round.median(), per_round_lines.min(), per_round_lines.median());
     }
 }
 
