@@ -475,6 +475,22 @@ void report_threads(const Case& c) {
                 1000.0 / median(c.two_ms), 1000.0 / median(c.two_occluder_ms));
 }
 
+// a[r] / b[r] per round: a variant over the floor measured in the same round (the floor moves
+// by a third between rounds on this machine; a ratio of two minima can pair different rounds).
+std::vector<double> per_round(const std::vector<double>& a, const std::vector<double>& b) {
+    std::vector<double> r;
+    for (size_t k = 0; k < a.size() && k < b.size(); ++k) r.push_back(a[k] / b[k]);
+    return r;
+}
+
+void report_rounds(const Case& c) {
+    std::printf("| %s | %s | %s | %s | %s |\n", c.name,
+                min_median(per_round(c.frame_ms, c.floor_ms)).c_str(),
+                min_median(per_round(c.occluder_ms, c.floor_ms)).c_str(),
+                min_median(per_round(c.two_ms, c.floor_ms)).c_str(),
+                min_median(per_round(c.two_occluder_ms, c.floor_ms)).c_str());
+}
+
 void print_tables(const Case (&cases)[2], int rounds) {
     std::printf(
         "1280x720, %d rounds of %d frames each, ms per frame (min / median over rounds)\n\n",
@@ -510,6 +526,12 @@ void print_tables(const Case (&cases)[2], int rounds) {
         "2 threads / floor (min, median) | fps, 2 threads | fps, occluder, 2 threads |\n"
         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (const Case& c : cases) report_threads(c);
+    std::printf(
+        "\nOver the floor round by round (each variant / the floor of the same round; min / "
+        "median\nover rounds):\n\n"
+        "| asset | frame | occluder | 2 threads | occluder, 2 threads |\n"
+        "| --- | ---: | ---: | ---: | ---: |\n");
+    for (const Case& c : cases) report_rounds(c);
 }
 
 int rounds_from(int argc, char** argv) {
