@@ -4,7 +4,8 @@
 // rounds (min and median over rounds of the ms per frame, each round kFrames frames of the
 // clip at 30 fps). Beside each, the memory-bandwidth bound of the bytes the point stages touch
 // (place: the placed points, relevance and size: the run points; runtime/point_clusters.h),
-// from a memcpy measured in the same rounds, and the ns per run point.
+// from a memcpy measured in the same rounds, and the ns per run point. Last, the same stages
+// over every point in stored order (level of detail off): what they reach with no scatter.
 //   stipple_bench_point_stages_frame [--rounds N] [--yaw DEG] NAME=FILE.stip[:CLIP] ...
 // Without assets it bakes CesiumMan at 100k points in memory. The thread counts of one asset
 // share one asset and run the same frames; their stages are byte-identical (point_stages.h).
@@ -74,9 +75,9 @@ struct Case {
     std::string name, file, clip_name;
     stipple::Asset asset;
     int clip = 0;
-    Run runs[2];                              // 1 and 2 threads
-    std::unique_ptr<stipple::Pipeline> full;  // level of detail off: the check
-    int differing = -1;                       // frames whose drawn dots differ from `full`
+    Run runs[2];         // 1 and 2 threads
+    Run full;            // level of detail off (1 thread): the check, and the stored order's time
+    int differing = -1;  // frames whose drawn dots differ from `full`
     double line_bytes = 0;  // per frame (check_frames): the 64-byte lines the stages touch
 };
 
@@ -108,8 +109,9 @@ bool init_runs(Case* c, const stipple::GlApi& gl, float yaw) {
         if (!stipple::pipeline_init(r.pipeline.get(), c->asset, gl, config).ok()) return false;
         if (k > 0) continue;
         config.lod = false;
-        c->full = std::make_unique<stipple::Pipeline>();
-        if (!stipple::pipeline_init(c->full.get(), c->asset, gl, config).ok()) return false;
+        c->full.pipeline = std::make_unique<stipple::Pipeline>();
+        if (!stipple::pipeline_init(c->full.pipeline.get(), c->asset, gl, config).ok())
+            return false;
     }
     return true;
 }
@@ -168,8 +170,8 @@ void check_frames(Case* c) {
         state.clip = c->clip;
         state.time = float(k) / 30.0f;
         stipple::pipeline_update(c->runs[0].pipeline.get(), state, nullptr);
-        stipple::pipeline_update(c->full.get(), state, nullptr);
-        c->differing += !same_dots(*c->runs[0].pipeline, *c->full);
+        stipple::pipeline_update(c->full.pipeline.get(), state, nullptr);
+        c->differing += !same_dots(*c->runs[0].pipeline, *c->full.pipeline);
         c->line_bytes += frame_line_bytes(*c->runs[0].pipeline) / kFrames;
     }
 }
@@ -325,6 +327,30 @@ void print_bounds(const std::vector<Case>& cases, const Series& bw) {
     }
 }
 
+// The same stages over every point in the stored order (level of detail off, 1 thread): each
+// array a stream from first point to last, only the neighbours' positions gathered, no point
+// sharing a line with one not run. What the kernels reach when the layout wastes nothing: the
+// lower limit of what a cluster-major order (the level of detail's run points contiguous)
+// could give the frame's stages above.
+void print_stored_order(const std::vector<Case>& cases, const Series& bw) {
+    std::printf(
+        "\nEvery point in stored order (level of detail off, 1 thread; the arrays streamed, the "
+        "neighbours' positions gathered):\n\n"
+        "| asset | points | bytes per frame | bound ms | ms (min / median) | / bound | "
+        "ns per point | per round: / bound (min / median) |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    const double best = *std::max_element(bw.v.begin(), bw.v.end());
+    for (const Case& c : cases) {
+        const Run& r = c.full;
+        const double bytes = stage_bytes(r, true), bound_ms = bytes / best * 1e-6;
+        const Series per_round = round_ratios(r.ms[kStages], bw, bytes);
+        std::printf("| %s | %.0f | %.2f MB | %.3f | %s | %.1f | %.1f | %.1f / %.1f |\n",
+                    c.name.c_str(), r.run, bytes * 1e-6, bound_ms, mm(r.ms[kStages]).c_str(),
+                    r.ms[kStages].min() / bound_ms, r.ns_per_run_point.min(), per_round.min(),
+                    per_round.median());
+    }
+}
+
 void print_ratios(const std::vector<Case>& cases) {
     if (cases.size() < 2) return;
     std::printf("\nAgainst %s (1 thread, min / median):\n\n", cases[0].name.c_str());
@@ -383,15 +409,17 @@ int main(int argc, char** argv) {
     for (int round = 0; round < rounds; ++round) {
         bw.v.push_back(bandwidth(&src, &dst));
         for (size_t i = 0; i < cases.size(); ++i)
-            for (int k = 0; k < 2; ++k) {
+            for (int k = 0; k < 3; ++k) {
                 Case& c = cases[(i + size_t(round)) % cases.size()];
-                run_frames(&c, &c.runs[(k + round) % 2]);
+                const int at = (k + round) % 3;
+                run_frames(&c, at < 2 ? &c.runs[at] : &c.full);
             }
     }
     std::printf("1280x720, %d interleaved rounds of %d frames, ms per frame (min / median)\n\n",
                 rounds, kFrames);
     print_stages(cases);
     print_bounds(cases, bw);
+    print_stored_order(cases, bw);
     print_ratios(cases);
     std::printf(
         "\nRanges the 2nd thread ran per frame (the caller runs those of a worker not "
@@ -407,7 +435,7 @@ int main(int argc, char** argv) {
     std::printf("\n");
     for (Case& c : cases) {
         for (Run& r : c.runs) stipple::pipeline_destroy(r.pipeline.get());
-        stipple::pipeline_destroy(c.full.get());
+        stipple::pipeline_destroy(c.full.pipeline.get());
     }
     return 0;
 }

@@ -471,6 +471,17 @@ void relevance_size_avx2(const PointsView& points, const uint32_t* quads, const 
     }
 }
 
+namespace {
+
+// Corner `k` (0, 1, 2) of the 8 triangles tri[0 .. 24): x, y, z across the lanes.
+inline void corner8(const float* posed, const uint32_t* tri, int k, f8& x, f8& y, f8& z) {
+    uint32_t at[8];
+    for (int l = 0; l < 8; ++l) at[l] = tri[3 * l + k];
+    xyz8(posed, false, 0, at, x, y, z);
+}
+
+}  // namespace
+
 // point_clusters_select.cpp's triangle_stretch (the squared stretches of each triangle, bind
 // -> posed), 8 triangles a step: the same products, sums, divides and the std::max choices as
 // blends; returns how many triangles it did (a multiple of 8; the caller does the rest).
@@ -479,22 +490,18 @@ uint32_t triangle_stretch_avx2(const uint32_t* indices, const float* posed, cons
     const f8 zero = _mm256_setzero_ps(), one = splat(1.0f), huge = splat(1e30f), two = splat(2.0f);
     uint32_t t = 0;
     for (; t + 8 <= count; t += 8) {
-        // The corners by plain loads into lanes (AVX2 gathers of scattered vertices measured
-        // 3x slower than these on the horse), the edges as the scalar code forms them.
-        alignas(32) float e[6][8];
-        alignas(32) float gm[3][8];
-        for (int l = 0; l < 8; ++l) {
-            const uint32_t* tri = indices + size_t(t + uint32_t(l)) * 3;
-            const __m128 o = load3(posed + size_t(tri[0]) * 3);
-            const __m128 e1 = _mm_sub_ps(load3(posed + size_t(tri[1]) * 3), o);
-            const __m128 e2 = _mm_sub_ps(load3(posed + size_t(tri[2]) * 3), o);
-            e[0][l] = lane0(e1), e[1][l] = lane<1>(e1), e[2][l] = lane<2>(e1);
-            e[3][l] = lane0(e2), e[4][l] = lane<1>(e2), e[5][l] = lane<2>(e2);
-            for (int k = 0; k < 3; ++k) gm[k][l] = gram[size_t(t + uint32_t(l)) * 3 + k];
-        }
-        const f8 e1x = _mm256_load_ps(e[0]), e1y = _mm256_load_ps(e[1]), e1z = _mm256_load_ps(e[2]);
-        const f8 e2x = _mm256_load_ps(e[3]), e2y = _mm256_load_ps(e[4]), e2z = _mm256_load_ps(e[5]);
-        const f8 a = _mm256_load_ps(gm[0]), b = _mm256_load_ps(gm[1]), cc = _mm256_load_ps(gm[2]);
+        // The corners by plain loads transposed into lanes (AVX2 gathers of scattered vertices
+        // measured 3x slower than these on the horse), the edges as the scalar code forms
+        // them; the 8 triangles' Gram entries are 24 consecutive floats.
+        const uint32_t* tri = indices + size_t(t) * 3;
+        f8 ox, oy, oz, e1x, e1y, e1z, e2x, e2y, e2z;
+        corner8(posed, tri, 0, ox, oy, oz);
+        corner8(posed, tri, 1, e1x, e1y, e1z);
+        corner8(posed, tri, 2, e2x, e2y, e2z);
+        e1x = _mm256_sub_ps(e1x, ox), e1y = _mm256_sub_ps(e1y, oy), e1z = _mm256_sub_ps(e1z, oz);
+        e2x = _mm256_sub_ps(e2x, ox), e2y = _mm256_sub_ps(e2y, oy), e2z = _mm256_sub_ps(e2z, oz);
+        f8 a, b, cc;
+        load_xyz8(gram + size_t(t) * 3, a, b, cc);
         const f8 a2 = dot3(e1x, e1y, e1z, e1x, e1y, e1z), b2 = dot3(e1x, e1y, e1z, e2x, e2y, e2z),
                  c2 = dot3(e2x, e2y, e2z, e2x, e2y, e2z);
         const f8 e3 = _mm256_add_ps(_mm256_sub_ps(a2, _mm256_mul_ps(two, b2)), c2);
