@@ -74,8 +74,8 @@ bool make_scene(Scene* sc) {
     if (!stipple::bench::bake_asset("CesiumMan/CesiumMan.glb", 100000, &sc->asset)) return false;
     const stipple::PointsView& pts = sc->asset.points;
     const size_t n = pts.point_count;
-    sc->pos.resize(n * 3);
-    sc->nrm.resize(n * 3);
+    sc->pos.resize(n * 3 + stipple::kSimdPadFloats);  // the AVX2 kernels' 16-byte loads
+    sc->nrm.resize(n * 3 + stipple::kSimdPadFloats);
     sc->scale.resize(n);
     sc->radius.resize(n);
     sc->size.resize(n);

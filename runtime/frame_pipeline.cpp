@@ -143,13 +143,16 @@ Status alloc_frame_buffers(Pipeline* p) {
                            "%zu points + refinement budget %u is too many", points, budget);
     p->point_capacity = uint32_t(capacity);
     if (!alloc(&p->dq_joints, joints) || !alloc(&p->models, nodes) ||
-        !alloc(&p->skin_matrices, joints) || !alloc(&p->vertex_positions, verts * 3) ||
-        !alloc(&p->vertex_normals, verts * 3) || !alloc(&p->point_positions, capacity * 3) ||
-        !alloc(&p->point_normals, capacity * 3) || !alloc(&p->rest_radius, points) ||
-        !alloc(&p->baked_radius, points) || !alloc(&p->radius, capacity) ||
-        !alloc(&p->size, capacity) || !alloc(&p->radius_scale, points) ||
-        !alloc(&p->draw_positions, capacity * 3) || !alloc(&p->draw_sizes, capacity) ||
-        !alloc(&p->refined_triangle, budget) || !alloc(&p->refined_index, budget) ||
+        !alloc(&p->skin_matrices, joints) ||
+        !alloc(&p->vertex_positions, verts * 3 + kSimdPadFloats) ||
+        !alloc(&p->vertex_normals, verts * 3) ||
+        !alloc(&p->point_positions, capacity * 3 + kSimdPadFloats) ||
+        !alloc(&p->point_normals, capacity * 3 + kSimdPadFloats) ||
+        !alloc(&p->rest_radius, points) || !alloc(&p->baked_radius, points) ||
+        !alloc(&p->radius, capacity) || !alloc(&p->size, capacity) ||
+        !alloc(&p->radius_scale, points) || !alloc(&p->draw_positions, capacity * 3) ||
+        !alloc(&p->draw_sizes, capacity) || !alloc(&p->refined_triangle, budget) ||
+        !alloc(&p->refined_index, budget) ||
         !alloc(&p->triangle_front, asset.mesh.triangle_count) ||
         !alloc(&p->lines, size_t(asset.edges.edge_count) * 6) ||
         !alloc(&p->vertex_pairs, verts * 8))

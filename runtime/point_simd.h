@@ -9,6 +9,7 @@
 // code (no FMA, no reciprocal approximations, the same NaN behaviour in comparisons and clamps), so
 // both paths give the same bits (tests/runtime/test_point_stages.cpp checks it).
 #pragma once
+#include <cstddef>
 #include <cstdint>
 
 #include "runtime/asset.h"
@@ -17,6 +18,11 @@
 namespace stipple {
 
 enum class PointSimd : uint8_t { baseline, avx2 };
+
+// The AVX2 kernels load a point's (or vertex's) x, y, z as one 16-byte load, so the arrays of 3
+// floats each they read by index (point positions and normals, posed vertex positions) must
+// have this many floats readable past their last entry; the pipeline allocates them so.
+inline constexpr size_t kSimdPadFloats = 1;
 
 // The widest path this CPU runs (cpuid once), or baseline where the environment sets
 // STIPPLE_SIMD=baseline (read once, at the first call).

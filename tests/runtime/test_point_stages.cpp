@@ -246,8 +246,8 @@ TEST_F(PointStagesTest, SimdKernelsMatchTheScalarCodeOnEdgeCases) {
     for (int path = 0; path < 4; ++path) {
         stipple::point_simd_force(path ? stipple::PointSimd::avx2 : stipple::PointSimd::baseline);
         Run& r = run[path];
-        r.pos.assign(size_t(n) * 3, -1.0f);
-        r.nrm.assign(size_t(n) * 3, -1.0f);
+        r.pos.assign(size_t(n) * 3 + stipple::kSimdPadFloats, -1.0f);  // 16-byte loads
+        r.nrm.assign(size_t(n) * 3 + stipple::kSimdPadFloats, -1.0f);
         r.radius.assign(n, -1.0f);
         r.size.assign(n, -1.0f);
         stipple::PointStageFrame f;
