@@ -32,6 +32,7 @@ constexpr int kFrames = 30;
 struct Series {
     std::vector<double> v;
     double min() const { return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end()); }
+    double max() const { return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()); }
     double median() const {
         if (v.empty()) return 0.0;
         std::vector<double> s = v;
@@ -256,13 +257,18 @@ double bandwidth(std::vector<char>* src, std::vector<char>* dst) {
     return best;
 }
 
+// The ms `bytes` take at `bandwidth` bytes per ns.
+double ms_at(double bytes, double bandwidth) {
+    return bytes / bandwidth * 1e-6;
+}
+
 // Per round: the stages' ms over the bound from that round's memcpy (the machine's bandwidth
 // moves between rounds; a ratio of two bests taken at different times can mix a quiet memcpy
 // with a busy frame).
 Series round_ratios(const Series& ms, const Series& bw, double bytes) {
     Series r;
     for (size_t k = 0; k < ms.v.size() && k < bw.v.size(); ++k)
-        r.v.push_back(ms.v[k] / (bytes / bw.v[k] * 1e-6));
+        r.v.push_back(ms.v[k] / ms_at(bytes, bw.v[k]));
     return r;
 }
 
@@ -295,7 +301,7 @@ void print_bounds(const std::vector<Case>& cases, const Series& bw) {
         "triangle passes, whose bytes the bound does not count); last, the bound of the 64-byte "
         "lines those bytes lie on (each array's distinct lines, written ones twice: read for "
         "ownership and write-back), what the memory system moves if nothing stays cached:\n\n",
-        *std::max_element(bw.v.begin(), bw.v.end()), bw.median());
+        bw.max(), bw.median());
     std::printf(
         "| asset | bytes per frame | bound ms | 1 thread ms (min / median) | 1T / bound | "
         "1T / bound, points only | ns per run point 1T | bound ns per run point | 2 threads ms | "
@@ -304,12 +310,11 @@ void print_bounds(const std::vector<Case>& cases, const Series& bw) {
         "per round: 1T / bound, of the lines (min / median) |\n"
         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
         "| ---: | ---: |\n");
-    const double best = *std::max_element(bw.v.begin(), bw.v.end());
     for (const Case& c : cases) {
         const Run& one = c.runs[0];
         const Run& two = c.runs[1];
-        const double bytes = stage_bytes(one, true), bound_ms = bytes / best * 1e-6;
-        const double points_ms = stage_bytes(one, false) / best * 1e-6;
+        const double bytes = stage_bytes(one, true), bound_ms = ms_at(bytes, bw.max());
+        const double points_ms = ms_at(stage_bytes(one, false), bw.max());
         const Series per_round = round_ratios(one.ms[kStages], bw, bytes);
         const Series per_round_lines = round_ratios(one.ms[kStages], bw, c.line_bytes);
         std::printf(
@@ -318,11 +323,11 @@ void print_bounds(const std::vector<Case>& cases, const Series& bw) {
             c.name.c_str(), bytes * 1e-6, bound_ms, mm(one.ms[kStages]).c_str(),
             one.ms[kStages].min() / bound_ms, one.ms[kStages].min() / points_ms,
             one.ns_per_run_point.min(), one.ns_per_run_point.median(),
-            bytes / best / std::max(one.run, 1.0), mm(two.ms[kStages]).c_str(),
+            bytes / bw.max() / std::max(one.run, 1.0), mm(two.ms[kStages]).c_str(),
             one.ms[kStages].min() / two.ms[kStages].min(),
             one.ms[kStages].median() / two.ms[kStages].median(), mm(one.ms[kStagesSelect]).c_str(),
             one.ms[kStagesSelect].min() / bound_ms, c.line_bytes * 1e-6,
-            one.ms[kStages].min() / (c.line_bytes / best * 1e-6), per_round.min(),
+            one.ms[kStages].min() / ms_at(c.line_bytes, bw.max()), per_round.min(),
             per_round.median(), per_round_lines.min(), per_round_lines.median());
     }
 }
@@ -339,10 +344,9 @@ void print_stored_order(const std::vector<Case>& cases, const Series& bw) {
         "| asset | points | bytes per frame | bound ms | ms (min / median) | / bound | "
         "ns per point | per round: / bound (min / median) |\n"
         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
-    const double best = *std::max_element(bw.v.begin(), bw.v.end());
     for (const Case& c : cases) {
         const Run& r = c.full;
-        const double bytes = stage_bytes(r, true), bound_ms = bytes / best * 1e-6;
+        const double bytes = stage_bytes(r, true), bound_ms = ms_at(bytes, bw.max());
         const Series per_round = round_ratios(r.ms[kStages], bw, bytes);
         std::printf("| %s | %.0f | %.2f MB | %.3f | %s | %.1f | %.1f | %.1f / %.1f |\n",
                     c.name.c_str(), r.run, bytes * 1e-6, bound_ms, mm(r.ms[kStages]).c_str(),
