@@ -77,22 +77,15 @@ bool quad_neighbours(const PointsView& points, uint32_t* out) {
     return true;
 }
 
-SizeKernelFrame::SizeKernelFrame(const SizeParams& p)
-    : params(&p),
-      row_w{p.view_projection[0][3], p.view_projection[1][3], p.view_projection[2][3],
-            p.view_projection[3][3]},
-      focal(focal_pixels(p)),
-      table(p) {}
-
 #if !((defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__)))
 // No AVX2 anywhere else: point_simd() is never avx2 there, so these are never called.
 void place_points_avx2(const PointsView&, const uint32_t*, const PointHost*, const float*,
                        const uint32_t*, uint32_t, uint32_t, float*, float*) {}
 void recompute_relevance_avx2(const PointsView&, const uint32_t*, const float*, const float*,
                               const float*, const uint32_t*, uint32_t, uint32_t, float*) {}
-void size_stipples_avx2(const SizeKernelFrame&, const float*, const float*, const float*,
-                        const uint32_t*, uint32_t, uint32_t, float*) {}
-void relevance_size_avx2(const PointsView&, const uint32_t*, const SizeKernelFrame&, const float*,
+void size_stipples_avx2(const SizeFrame&, const float*, const float*, const float*, const uint32_t*,
+                        uint32_t, uint32_t, float*) {}
+void relevance_size_avx2(const PointsView&, const uint32_t*, const SizeFrame&, const float*,
                          const float*, const float*, const float*, const uint32_t*, uint32_t,
                          uint32_t, float*, float*) {}
 uint32_t triangle_stretch_avx2(const uint32_t*, const float*, const float*, uint32_t, float*,

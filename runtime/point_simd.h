@@ -38,15 +38,6 @@ void point_simd_force(PointSimd simd);
 
 const char* point_simd_name(PointSimd simd);  // "baseline", "avx2"
 
-// What size's kernel reads once per frame (as stipple_size.cpp's own SizeFrame).
-struct SizeKernelFrame {
-    const SizeParams* params;
-    float row_w[4];  // row 3 of view_projection: clip depth w
-    float focal;     // focal_pixels(params)
-    InkTable table;
-    explicit SizeKernelFrame(const SizeParams& p);
-};
-
 // The posed vertices as place's AVX2 kernel reads them: vertex v's position and normal in
 // out[8 v .. 8 v + 8) as x y z |n| nx ny nz 1/|n| (one 32-byte load per host corner instead of
 // two 12-byte loads from two arrays). Plain copies: the bits of positions and normals; |n| with
@@ -87,16 +78,16 @@ void recompute_relevance_avx2(const PointsView& points, const uint32_t* quads,
                               const float* point_positions, const float* scale,
                               const float* fallback_radius, const uint32_t* list, uint32_t begin,
                               uint32_t end, float* out_radius);
-void size_stipples_avx2(const SizeKernelFrame& frame, const float* positions, const float* normals,
+void size_stipples_avx2(const SizeFrame& frame, const float* positions, const float* normals,
                         const float* radius, const uint32_t* list, uint32_t begin, uint32_t end,
                         float* out_size);
 // Relevance and then size over the same points in one pass (issue 9 item 5, stage fusion):
 // each point's position is read once and its radius reaches size in a register; writes
 // out_radius and out_size with the bits of the two kernels above run one after the other.
-void relevance_size_avx2(const PointsView& points, const uint32_t* quads,
-                         const SizeKernelFrame& frame, const float* positions, const float* normals,
-                         const float* scale, const float* fallback_radius, const uint32_t* list,
-                         uint32_t begin, uint32_t end, float* out_radius, float* out_size);
+void relevance_size_avx2(const PointsView& points, const uint32_t* quads, const SizeFrame& frame,
+                         const float* positions, const float* normals, const float* scale,
+                         const float* fallback_radius, const uint32_t* list, uint32_t begin,
+                         uint32_t end, float* out_radius, float* out_size);
 
 // point_clusters_select.cpp's per-triangle squared stretches for triangles 0 .. count - 1,
 // 8 at a time; returns how many it did (the caller runs the scalar code on the rest).

@@ -12,7 +12,7 @@ struct StageTask {
     const PointStageFrame* f;
     const uint32_t* list;
     PointSimd simd;
-    const SizeKernelFrame* size_frame;  // avx2 size only
+    const SizeFrame* size_frame;  // avx2 size only
 };
 
 void place_range(void* context, uint32_t begin, uint32_t end) {
@@ -113,7 +113,7 @@ void point_stage_size(ThreadPool* pool, const PointStageFrame& f, const uint32_t
                       uint32_t count) {
     const PointSimd simd = point_simd();
     if (simd == PointSimd::avx2) {
-        const SizeKernelFrame frame(*f.params);  // once for every range
+        const SizeFrame frame(*f.params);  // once for every range
         StageTask task{&f, list, simd, &frame};
         thread_pool_run(pool, count, kMinPointsPerThread, size_range, &task);
         return;
@@ -126,7 +126,7 @@ bool point_stage_relevance_size(ThreadPool* pool, const PointStageFrame& f, cons
                                 uint32_t count) {
     const PointSimd simd = point_simd();
     if (simd != PointSimd::avx2) return false;
-    const SizeKernelFrame frame(*f.params);  // once for every range
+    const SizeFrame frame(*f.params);  // once for every range
     StageTask task{&f, list, simd, &frame};
     thread_pool_run(pool, count, kMinPointsPerThread, relevance_size_range, &task);
     return true;

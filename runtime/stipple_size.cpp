@@ -40,32 +40,44 @@ InkTable::InkTable(const SizeParams& params) {
     }
 }
 
+SizeFrame::SizeFrame(const SizeParams& p)
+    : params(&p),
+      row_w{p.view_projection[0][3], p.view_projection[1][3], p.view_projection[2][3],
+            p.view_projection[3][3]},
+      focal(focal_pixels(p)),
+      dot_area_per_region(0.785398163f * p.max_point_size * p.max_point_size /
+                          kRegionPerRadiusSquared),
+      inv_slope(1.0f / (p.smooth_slope - 1.0f)),
+      table(p) {}
+
 namespace {
 
-// What every point's size reads once per frame.
-struct SizeFrame {
-    glm::vec4 row_w;  // row 3 of view_projection: the clip depth w
-    float focal;
-    InkTable table;
-    explicit SizeFrame(const SizeParams& params)
-        : row_w(params.view_projection[0][3], params.view_projection[1][3],
-                params.view_projection[2][3], params.view_projection[3][3]),
-          focal(focal_pixels(params)),
-          table(params) {}
-};
+// One point's size (Thesis §3.1.1, §3.1.2, Alg. 3.2) with its three divides folded into one:
+// the region of influence on the screen is kRegion (r focal / w)^2 N.V, N.V = N.(eye - p) /
+// |eye - p|, and Alg. 3.2's ratio TargetTone / GivenTone = ink region / dot area, so
+//   ratio = ink (r focal)^2 N.(eye - p) / (w^2 |eye - p| dot area / kRegion).
+// Back-facing points (N.(eye - p) <= 0) and points behind the eye (w <= 0) get size 0. The AVX2
+// kernel (runtime/point_simd_avx2.cpp) does these operations in this order.
+inline float stipple_size(const SizeFrame& f, const glm::vec3& p, const glm::vec3& n,
+                          float radius) {
+    const SizeParams& params = *f.params;
+    const glm::vec3 to_eye = params.eye - p;
+    const float n_dot_t = glm::dot(n, to_eye);
+    // glm::dot(vec4(p, 1)): (x + y) + (z + w), w's product row_w[3] * 1.
+    const float w = (f.row_w[0] * p.x + f.row_w[1] * p.y) + (f.row_w[2] * p.z + f.row_w[3]);
+    if (n_dot_t <= 0.0f || w <= 0.0f) return 0.0f;
+    const float rf = radius * f.focal;
+    const float ink = f.table.at(lighting(params, n));
+    const float ratio = ink * (rf * rf) * n_dot_t /
+                        ((w * w) * (std::sqrt(glm::dot(to_eye, to_eye)) * f.dot_area_per_region));
+    return smooth_size_from_ratio(ratio, params.max_point_size, f.inv_slope);
+}
 
-inline float stipple_size(const SizeFrame& f, const SizeParams& params, const float* positions,
-                          const float* normals, const float* radius, uint32_t i) {
+inline float size_of(const SizeFrame& f, const float* positions, const float* normals,
+                     const float* radius, uint32_t i) {
     const glm::vec3 p(positions[i * 3], positions[i * 3 + 1], positions[i * 3 + 2]);
     const glm::vec3 n(normals[i * 3], normals[i * 3 + 1], normals[i * 3 + 2]);
-    const glm::vec3 to_eye = params.eye - p;
-    const float n_dot_v = glm::dot(n, to_eye) / glm::length(to_eye);
-    const float w = glm::dot(f.row_w, glm::vec4(p, 1.0f));
-    if (n_dot_v <= 0.0f || w <= 0.0f) return 0.0f;
-    const float r_px = radius[i] * f.focal / w;
-    const float region_px = kRegionPerRadiusSquared * r_px * r_px * n_dot_v;  // §3.1.2
-    const float ink = f.table.at(lighting(params, n));
-    return smooth_point_size(ink, region_px, params.max_point_size, params.smooth_slope);
+    return stipple_size(f, p, n, radius[i]);
 }
 
 }  // namespace
@@ -74,7 +86,7 @@ void size_stipples(uint32_t count, const float* positions, const float* normals,
                    const float* radius, const SizeParams& params, float* out_size) {
     const SizeFrame frame(params);
     for (uint32_t i = 0; i < count; ++i)
-        out_size[i] = stipple_size(frame, params, positions, normals, radius, i);
+        out_size[i] = size_of(frame, positions, normals, radius, i);
 }
 
 void size_listed_stipples(const uint32_t* list, uint32_t list_count, const float* positions,
@@ -82,7 +94,7 @@ void size_listed_stipples(const uint32_t* list, uint32_t list_count, const float
                           float* out_size) {
     const SizeFrame frame(params);
     for (uint32_t j = 0; j < list_count; ++j)
-        out_size[list[j]] = stipple_size(frame, params, positions, normals, radius, list[j]);
+        out_size[list[j]] = size_of(frame, positions, normals, radius, list[j]);
 }
 
 }  // namespace stipple

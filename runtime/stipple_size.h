@@ -1,5 +1,6 @@
 // Stipple sizing: target tone -> dot diameter in pixels (thesis ch. 3).
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <glm/glm.hpp>
 
@@ -84,17 +85,34 @@ constexpr float kRegionPerRadiusSquared = 1.0f;
 // size_stipples divides the target tone by f(s) so the drawn tone matches the target.
 float smooth_slope_ink_fraction(float smooth_slope);
 
-// Thesis Alg. 3.2 (smooth point rendering) for one point: the diameter in pixels, from its
-// target tone and the screen area of its region of influence.
-inline float smooth_point_size(float target_tone, float region_px, float max_point_size,
-                               float smooth_slope) {
-    const float dot_area = 0.785398163f * max_point_size * max_point_size;  // pi (d/2)^2
-    const float given_tone = dot_area / region_px;                          // GivenTone
-    const float ratio = target_tone / given_tone;
-    float s = (ratio - 1.0f) / (smooth_slope - 1.0f);
+// Thesis Alg. 3.2 (smooth point rendering) from a point's tone ratio TargetTone / GivenTone:
+// ratios in [1, smoothSlope] give partial size, inv_slope = 1 / (smoothSlope - 1).
+inline float smooth_size_from_ratio(float ratio, float max_point_size, float inv_slope) {
+    float s = (ratio - 1.0f) * inv_slope;
     s = s < 0.0f ? 0.0f : (s > 1.0f ? 1.0f : s);
     return s * max_point_size;
 }
+
+// Alg. 3.2 for one point: the diameter in pixels, from its target tone and the screen area of
+// its region of influence (GivenTone = dot area / region).
+inline float smooth_point_size(float target_tone, float region_px, float max_point_size,
+                               float smooth_slope) {
+    const float dot_area = 0.785398163f * max_point_size * max_point_size;  // pi (d/2)^2
+    return smooth_size_from_ratio(target_tone * region_px / dot_area, max_point_size,
+                                  1.0f / (smooth_slope - 1.0f));
+}
+
+// What every point's size reads once per frame (the scalar code and the AVX2 kernels of
+// runtime/point_simd.h alike).
+struct SizeFrame {
+    const SizeParams* params;
+    float row_w[4];             // row 3 of view_projection: the clip depth w
+    float focal;                // focal_pixels(params)
+    float dot_area_per_region;  // pi (MaximumPtSize / 2)^2 / kRegionPerRadiusSquared
+    float inv_slope;            // 1 / (smoothSlope - 1)
+    InkTable table;
+    explicit SizeFrame(const SizeParams& params);
+};
 
 // Sizes every point: target tone (constant, or Lambert from one directional light) turned into
 // ink by ink_for_tone, the region of influence projected to the screen (§3.1.1: radius times pixels
