@@ -22,7 +22,7 @@ for side in old new; do
   done
   g++ $F -I"$R" -I"$HERE" -Dstipple=stipple_$side $X -c "$HERE/adapter.cpp" -o "$OUT/${side}_adapter.o"
 done
-g++ $F -I"$NEW" -I"$HERE" -c "$HERE/main.cpp" -o "$OUT/main.o"
+g++ $F -I"$NEW" -I"$HERE" -DSTIPPLE_SOURCE_DIR=\"$NEW\" -c "$HERE/main.cpp" -o "$OUT/main.o"
 g++ "$OUT"/main.o "$OUT"/old_*.o "$OUT"/new_*.o -o "$OUT/ab" "$NEW/build/runtime/libstipple_runtime.a" \
   "$NEW/build/platform/libstipple_platform.a" "$NEW/build/anim/libstipple_anim.a" \
   -lEGL -lGLESv2 -lOSMesa -lpthread -ldl

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "ab.h"
-#include "platform/headless_context.h"
+#include "bench/bench_setup.h"
 #include "runtime/frame_pipeline.h"
 using Clock = std::chrono::steady_clock;
 int main(int argc, char** argv) {
@@ -21,11 +21,9 @@ int main(int argc, char** argv) {
     stipple::platform::HeadlessConfig hc;
     hc.width = 1280;
     hc.height = 720;
-    stipple::platform::HeadlessContext context;
-    stipple::GlApi gl;
-    if (!stipple::platform::create_headless_context(hc, &context).ok() ||
-        !stipple::load_gl_api(stipple::platform::proc_loader(context), &gl).ok())
-        return 1;
+    stipple::bench::HeadlessGl context;
+    if (!stipple::bench::headless_gl(&context, hc)) return 1;
+    const stipple::GlApi& gl = context.gl;
     stipple::FrameConfig config;
     config.width = 1280;
     config.height = 720;
