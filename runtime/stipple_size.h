@@ -1,6 +1,5 @@
 // Stipple sizing: target tone -> dot diameter in pixels (thesis ch. 3).
 #pragma once
-#include <cmath>
 #include <cstdint>
 #include <glm/glm.hpp>
 
