@@ -284,10 +284,13 @@ namespace {
 
 // Points are stored coarse to fine, so consecutive points lie far apart on the surface and a
 // large mesh (the horse: 48k vertices, 97k triangles) misses the cache on every host triangle
-// and vertex. Prefetching a few points ahead overlaps those misses: the host triangle's
-// indices kFar points ahead, its vertex pairs kNear points ahead (their indices arrived by then).
-// (Measured: the horse's place 1.5x faster; CesiumMan's, whose 3k vertices stay cached, ~10%
-// slower. Prefetching relevance's neighbour positions the same way cost CesiumMan 20%.)
+// and vertex. On the path without host records (meshes of more than 2^21 vertices) each
+// point's triangle is three dependent loads, so its indices are prefetched kFar points ahead
+// and its vertices kNear points ahead (their indices arrived by then). (Measured before the
+// host records: the horse's place 1.5x faster; CesiumMan's ~10% slower. Prefetching
+// relevance's neighbour positions the same way cost CesiumMan 20%.) The host records' path
+// prefetches nothing: one record, then the corners, is a chain the core runs ahead of itself,
+// and the 4 prefetches a point cost more than they hid (docs/performance.md, fourteenth round).
 constexpr uint32_t kNear = 8, kFar = 16;
 
 inline void prefetch(const void* p) {
@@ -306,10 +309,6 @@ inline void prefetch_vertices(const PointsView& points, const uint32_t* indices,
 
 constexpr uint64_t kCornerMask = (uint64_t(1) << 21) - 1;
 
-inline void prefetch_corners(const PointHost& h, const float* pairs) {
-    for (int k = 0; k < 3; ++k) prefetch(pairs + size_t(h.corners >> (21 * k) & kCornerMask) * 8);
-}
-
 }  // namespace
 
 // point_placement.cpp's place_point (Thesis Alg. 6.3), from the points' 16-byte hosts when
@@ -319,8 +318,6 @@ void place_points_avx2(const PointsView& points, const uint32_t* indices, const 
                        float* out_positions, float* out_normals) {
     if (hosts) {
         for (uint32_t j = begin; j < end; ++j) {
-            if (j + kFar < end) prefetch(hosts + (list ? list[j + kFar] : j + kFar));
-            if (j + kNear < end) prefetch_corners(hosts[list ? list[j + kNear] : j + kNear], pairs);
             const uint32_t i = list ? list[j] : j;
             const PointHost h = hosts[i];
             place_point8(pairs, uint32_t(h.corners & kCornerMask),
