@@ -344,6 +344,38 @@ inline void place_points4(const float* pairs, const PointHost* hosts, const uint
 
 }  // namespace
 
+// point_simd.cpp's pair_vertices, 4 vertices a step: each normal's |n|^2 summed as glm::length
+// does, (x x + y y) + z z, then the 4 roots and reciprocals in one vector (correctly rounded, so
+// the same bits as std::sqrt and 1 / len; len > 0 false for 0 and NaN: 1/|n| = +0).
+void pair_vertices_avx2(uint32_t count, const float* positions, const float* normals, float* out) {
+    uint32_t v = 0;
+    for (; v + 4 <= count; v += 4) {
+        __m128 p[4], n[4];
+        alignas(16) float len2[4];
+        for (int k = 0; k < 4; ++k) {
+            p[k] = load3(positions + size_t(v + k) * 3);
+            n[k] = load3(normals + size_t(v + k) * 3);
+            const __m128 nn = _mm_mul_ps(n[k], n[k]);
+            len2[k] = (lane0(nn) + lane<1>(nn)) + lane<2>(nn);
+        }
+        const __m128 len = _mm_sqrt_ps(_mm_load_ps(len2));
+        const __m128 inv =
+            _mm_and_ps(_mm_cmpgt_ps(len, _mm_setzero_ps()), _mm_div_ps(_mm_set1_ps(1.0f), len));
+        const __m128 ls[4] = {_mm_shuffle_ps(len, len, 0x00), _mm_shuffle_ps(len, len, 0x55),
+                              _mm_shuffle_ps(len, len, 0xaa), _mm_shuffle_ps(len, len, 0xff)};
+        const __m128 is[4] = {_mm_shuffle_ps(inv, inv, 0x00), _mm_shuffle_ps(inv, inv, 0x55),
+                              _mm_shuffle_ps(inv, inv, 0xaa), _mm_shuffle_ps(inv, inv, 0xff)};
+        for (int k = 0; k < 4; ++k) {
+            float* o = out + size_t(v + k) * 8;
+            _mm_storeu_ps(o, _mm_blend_ps(p[k], ls[k], 0x8));      // x y z |n|
+            _mm_storeu_ps(o + 4, _mm_blend_ps(n[k], is[k], 0x8));  // nx ny nz 1/|n|
+        }
+    }
+    if (v < count)
+        pair_vertices(count - v, positions + size_t(v) * 3, normals + size_t(v) * 3,
+                      out + size_t(v) * 8);
+}
+
 // point_placement.cpp's place_point (Thesis Alg. 6.3), from the points' 16-byte hosts when
 // there are (one line per point, the corners without the triangle's indices in between).
 void place_points_avx2(const PointsView& points, const uint32_t* indices, const PointHost* hosts,

@@ -93,8 +93,9 @@ PointStageFrame point_stage_frame(Pipeline* p) {
 
 void point_stage_pair_vertices(Pipeline* p) {
     if (!p->vertex_pairs) return;
-    pair_vertices(p->asset->mesh.vertex_count, p->vertex_positions.get(), p->vertex_normals.get(),
-                  p->vertex_pairs.get());
+    (point_simd() == PointSimd::avx2 ? pair_vertices_avx2 : pair_vertices)(
+        p->asset->mesh.vertex_count, p->vertex_positions.get(), p->vertex_normals.get(),
+        p->vertex_pairs.get());
 }
 
 void point_stage_place(ThreadPool* pool, const PointStageFrame& f, const uint32_t* list,

@@ -367,3 +367,33 @@ TEST(ThreadPool, RangesCoverEveryIndexOnce) {
 }
 
 }  // namespace
+
+// The vertex pairs (runtime/point_simd.h) from both paths, on 23 vertices (a tail of 3) whose
+// normals include zero, NaN, infinite, subnormal and huge ones: the same bytes, and |n|, 1/|n|
+// as stated (1/|n| = 0 where |n| is not > 0).
+TEST(PointSimdPairs, Avx2PairsMatchTheScalarPairs) {
+    if (stipple::point_simd_detected() != stipple::PointSimd::avx2)
+        GTEST_SKIP() << "this CPU has no AVX2 (or STIPPLE_SIMD=baseline): one path only";
+    const uint32_t n = 23;
+    std::vector<float> positions(n * 3), normals(n * 3);
+    for (uint32_t i = 0; i < n * 3; ++i) {
+        positions[i] = 0.37f * float(i) - 3.0f;
+        normals[i] = std::sin(1.7f * float(i));
+    }
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    const float special[6][3] = {{0, 0, 0},      {nan, 0, 1},       {inf, 0, 0},
+                                 {1e-40f, 0, 0}, {1e20f, 1e20f, 0}, {-0.0f, -0.0f, -0.0f}};
+    for (int k = 0; k < 6; ++k)
+        for (int c = 0; c < 3; ++c) normals[size_t(k * 4 + 1) * 3 + c] = special[k][c];
+    std::vector<float> scalar(n * 8, -1.0f), avx2(n * 8, -2.0f);
+    stipple::pair_vertices(n, positions.data(), normals.data(), scalar.data());
+    stipple::pair_vertices_avx2(n, positions.data(), normals.data(), avx2.data());
+    EXPECT_TRUE(same_bytes(scalar, avx2));
+    EXPECT_EQ(scalar[1 * 8 + 3], 0.0f);  // zero normal: |n| = 0, 1/|n| = 0
+    EXPECT_EQ(scalar[1 * 8 + 7], 0.0f);
+    EXPECT_EQ(scalar[5 * 8 + 7], 0.0f);  // NaN: 1/|n| = 0
+    EXPECT_EQ(scalar[9 * 8 + 3], inf);
+    EXPECT_EQ(scalar[9 * 8 + 7], 0.0f);
+    EXPECT_FLOAT_EQ(scalar[0 * 8 + 3] * scalar[0 * 8 + 7], 1.0f);
+}
