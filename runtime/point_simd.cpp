@@ -79,6 +79,7 @@ bool quad_neighbours(const PointsView& points, uint32_t* out) {
 
 #if !((defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__)))
 // No AVX2 anywhere else: point_simd() is never avx2 there, so these are never called.
+void pair_vertices_avx2(uint32_t, const float*, const float*, float*) {}
 void place_points_avx2(const PointsView&, const uint32_t*, const PointHost*, const float*,
                        const uint32_t*, uint32_t, uint32_t, float*, float*) {}
 void recompute_relevance_avx2(const PointsView&, const uint32_t*, const float*, const float*,
