@@ -68,11 +68,13 @@ bool point_hosts(const PointsView& points, const uint32_t* indices, uint32_t ver
 }
 
 bool quad_neighbours(const PointsView& points, uint32_t* out) {
+    if (points.point_count > kQuadMaxPoints) return false;  // 3 i must fit in 32 bits
     for (uint32_t i = 0; i < points.point_count; ++i) {
         const uint32_t begin = points.neighbour_offsets[i], end = points.neighbour_offsets[i + 1];
         if (end - begin > 4) return false;
         uint32_t* o = out + size_t(i) * 4;
-        for (uint32_t k = 0; k < 4; ++k) o[k] = begin + k < end ? points.neighbours[begin + k] : i;
+        for (uint32_t k = 0; k < 4; ++k)
+            o[k] = 3 * (begin + k < end ? points.neighbours[begin + k] : i);
     }
     return true;
 }

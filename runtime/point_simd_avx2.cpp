@@ -71,10 +71,15 @@ inline Moment8 zero_moment8() {  // (no default member initializers: they would 
     const f8 z = _mm256_setzero_ps();
     return Moment8{z, z, z, z, z, z};
 }
+// The neighbours at[0 .. 8) of the 8 points px, py, pz, one per lane: float offsets (3 times
+// the index) when `offsets`, else indices.
 inline void add_neighbours8(Moment8* m, f8 px, f8 py, f8 pz, const float* positions,
-                            const uint32_t* at) {
+                            const uint32_t* at, bool offsets) {
     f8 qx, qy, qz;
-    xyz8(positions, false, 0, at, qx, qy, qz);
+    if (offsets)
+        xyz8_at(positions, at, qx, qy, qz);
+    else
+        xyz8(positions, false, 0, at, qx, qy, qz);
     const f8 dx = _mm256_sub_ps(qx, px), dy = _mm256_sub_ps(qy, py), dz = _mm256_sub_ps(qz, pz);
     m->xx = _mm256_add_ps(m->xx, _mm256_mul_ps(dx, dx));
     m->yy = _mm256_add_ps(m->yy, _mm256_mul_ps(dy, dy));
@@ -84,14 +89,14 @@ inline void add_neighbours8(Moment8* m, f8 px, f8 py, f8 pz, const float* positi
     m->yz = _mm256_add_ps(m->yz, _mm256_mul_ps(dy, dz));
 }
 // k I2^(1/4) per lane, I2 clamped at 0 (std::max(i2, 0)).
-inline f8 area_radius8(const Moment8& m, const float* k) {
+inline f8 area_radius8(const Moment8& m, f8 k) {
     const f8 i2 = _mm256_add_ps(
         _mm256_add_ps(_mm256_sub_ps(_mm256_mul_ps(m.xx, m.yy), _mm256_mul_ps(m.xy, m.xy)),
                       _mm256_sub_ps(_mm256_mul_ps(m.xx, m.zz), _mm256_mul_ps(m.xz, m.xz))),
         _mm256_sub_ps(_mm256_mul_ps(m.yy, m.zz), _mm256_mul_ps(m.yz, m.yz)));
     const f8 kept =
         select(_mm256_cmp_ps(i2, _mm256_setzero_ps(), _CMP_LT_OQ), _mm256_setzero_ps(), i2);
-    return _mm256_mul_ps(_mm256_load_ps(k), _mm256_sqrt_ps(_mm256_sqrt_ps(kept)));
+    return _mm256_mul_ps(k, _mm256_sqrt_ps(_mm256_sqrt_ps(kept)));
 }
 
 // Alg. 6.4's area measure for the 8 points i[0 .. 8) at once, each point's neighbours in its
@@ -99,17 +104,19 @@ inline f8 area_radius8(const Moment8& m, const float* k) {
 // never becomes -0, so adding +0 leaves its bits), then k I2^(1/4) into *radius; px, py, pz
 // are the 8 points' positions. Returns false (radius not set) when a real lane's scale is not > 0
 // (the mean distance or the fallback radius: the caller takes those points one by one). With
-// `quads` (point_simd.h's quad_neighbours) the neighbours come from one 16-byte record per point,
-// four steps for every block (a padded entry is the point itself: the same +0); otherwise from the
-// offsets and the list.
-inline bool relevance_area8(const PointsView& points, const uint32_t* quads, const float* positions,
-                            const float* scale, const uint32_t* i, f8 px, f8 py, f8 pz,
-                            f8* radius) {
-    alignas(32) float k[8];
-    for (int l = 0; l < 8; ++l) {
-        k[l] = scale[i[l]];
-        if (!(k[l] > 0.0f)) return false;  // the repeated lanes repeat a real one
-    }
+// `quads` (point_simd.h's quad_neighbours) the neighbours come from one 16-byte record per point
+// (their float offsets), four steps for every block (a padded entry is the point itself: the same
+// +0); otherwise from the offsets and the list. Always inlined: GCC's size heuristics may leave
+// it out of line, and a call that passes 8-lane vectors on the stack costs 1.5x.
+__attribute__((always_inline)) inline bool relevance_area8(const PointsView& points,
+                                                           const uint32_t* quads,
+                                                           const float* positions,
+                                                           const float* scale, const uint32_t* i,
+                                                           f8 px, f8 py, f8 pz, f8* radius) {
+    // One comparison for the 8 scales (the repeated lanes repeat a real one; NaN is not > 0).
+    const f8 k = _mm256_setr_ps(scale[i[0]], scale[i[1]], scale[i[2]], scale[i[3]], scale[i[4]],
+                                scale[i[5]], scale[i[6]], scale[i[7]]);
+    if (_mm256_movemask_ps(_mm256_cmp_ps(k, _mm256_setzero_ps(), _CMP_GT_OQ)) != 0xFF) return false;
     Moment8 m = zero_moment8();
     uint32_t at[8];
     if (quads) {
@@ -117,7 +124,7 @@ inline bool relevance_area8(const PointsView& points, const uint32_t* quads, con
         for (int l = 0; l < 8; ++l) q[l] = quads + size_t(i[l]) * 4;
         for (int n = 0; n < 4; ++n) {
             for (int l = 0; l < 8; ++l) at[l] = q[l][n];
-            add_neighbours8(&m, px, py, pz, positions, at);
+            add_neighbours8(&m, px, py, pz, positions, at, true);
         }
     } else {
         uint32_t first[8], count[8], most = 0;
@@ -129,7 +136,7 @@ inline bool relevance_area8(const PointsView& points, const uint32_t* quads, con
         for (uint32_t n = 0; n < most; ++n) {
             for (int l = 0; l < 8; ++l)
                 at[l] = n < count[l] ? points.neighbours[first[l] + n] : i[l];
-            add_neighbours8(&m, px, py, pz, positions, at);
+            add_neighbours8(&m, px, py, pz, positions, at, false);
         }
     }
     *radius = area_radius8(m, k);

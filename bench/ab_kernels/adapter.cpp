@@ -1,4 +1,6 @@
 // bench/ab_kernels: one tree's kernels behind a namespace-free entry (build.sh).
+#include <vector>
+
 #include "ab.h"
 #include "runtime/point_simd.h"
 #ifndef FRAME
@@ -15,6 +17,13 @@ void STAGES(const AbState& s, int part) {
                                    s.placed, 0, s.placed_count, s.positions, s.normals);
     if (!(part & 2)) return;
     const stipple::FRAME frame(params);
-    stipple::relevance_size_avx2(points, s.quads, frame, s.positions, s.normals, s.scale,
-                                 s.fallback, s.run, 0, s.run_count, s.radius, s.size);
+    // This tree's own neighbour records (their layout changed in the fifteenth round).
+    static std::vector<uint32_t> quads;
+    if (s.quads && quads.empty()) {
+        quads.resize(size_t(points.point_count) * 4);
+        if (!stipple::quad_neighbours(points, quads.data())) quads.clear();
+    }
+    stipple::relevance_size_avx2(points, quads.empty() ? nullptr : quads.data(), frame, s.positions,
+                                 s.normals, s.scale, s.fallback, s.run, 0, s.run_count, s.radius,
+                                 s.size);
 }
