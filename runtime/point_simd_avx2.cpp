@@ -5,7 +5,9 @@
 // original operation by operation: same products, sums in the same order, sqrt and divide (no
 // rsqrt/rcp), the scalar code's comparisons and clamps as blends with the same NaN behaviour, no
 // FMA (the target is avx2 alone and this file is built with -ffp-contract=off), so every lane gives
-// the bits the scalar code gives. Every header is included before the target pragma, and only
+// the bits the scalar code gives. A choice c < x ? c : x is max_ps(c, x) and x < c ? x : c is
+// min_ps(x, c), one instruction with the same result for NaN and signed zeros (max_ps(a, b) is
+// a > b ? a : b). Every header is included before the target pragma, and only
 // intrinsics and this file's own internal functions run under it, so no inline function shared with
 // other files is compiled for AVX2 (which the linker could pick for the baseline callers too).
 #include <cstddef>
@@ -94,8 +96,7 @@ inline f8 area_radius8(const Moment8& m, f8 k) {
         _mm256_add_ps(_mm256_sub_ps(_mm256_mul_ps(m.xx, m.yy), _mm256_mul_ps(m.xy, m.xy)),
                       _mm256_sub_ps(_mm256_mul_ps(m.xx, m.zz), _mm256_mul_ps(m.xz, m.xz))),
         _mm256_sub_ps(_mm256_mul_ps(m.yy, m.zz), _mm256_mul_ps(m.yz, m.yz)));
-    const f8 kept =
-        select(_mm256_cmp_ps(i2, _mm256_setzero_ps(), _CMP_LT_OQ), _mm256_setzero_ps(), i2);
+    const f8 kept = _mm256_max_ps(_mm256_setzero_ps(), i2);  // i2 < 0 ? 0 : i2
     return _mm256_mul_ps(k, _mm256_sqrt_ps(_mm256_sqrt_ps(kept)));
 }
 
@@ -174,10 +175,10 @@ inline f8 lighting8(const SizeParams& s, f8 nx, f8 ny, f8 nz) {
     for (int k = 0; k < s.light_count; ++k) {
         const f8 d = dot3(nx, ny, nz, splat(s.light_direction[k].x), splat(s.light_direction[k].y),
                           splat(s.light_direction[k].z));
-        const f8 m = select(_mm256_cmp_ps(d, zero, _CMP_LT_OQ), zero, d);  // glm::max(d, 0)
+        const f8 m = _mm256_max_ps(zero, d);  // glm::max(d, 0): d < 0 ? 0 : d
         lit = _mm256_add_ps(lit, _mm256_mul_ps(splat(s.light_intensity[k]), m));
     }
-    return select(_mm256_cmp_ps(lit, one, _CMP_LT_OQ), lit, one);
+    return _mm256_min_ps(lit, one);  // lit < 1 ? lit : 1
 }
 
 // InkTable's 33 entries from i in [0, 32) per lane, table[i]: 4 in-register permutes and 3
@@ -195,8 +196,8 @@ inline f8 lookup32(const float* table, i8 i, f8 bit3, f8 bit4) {
 inline f8 ink_at(const InkTable& t, f8 x) {
     static_assert(InkTable::kSteps == 32, "lookup32 reads 32 entries");
     const f8 zero = _mm256_setzero_ps(), one = splat(1.0f);
-    const f8 inner = select(_mm256_cmp_ps(x, one, _CMP_LT_OQ), x, one);
-    const f8 c = select(_mm256_cmp_ps(x, zero, _CMP_GT_OQ), inner, zero);
+    const f8 inner = _mm256_min_ps(x, one);                                 // x < 1 ? x : 1
+    const f8 c = _mm256_and_ps(_mm256_cmp_ps(x, zero, _CMP_GT_OQ), inner);  // x > 0 ? inner : 0
     const f8 xs = _mm256_mul_ps(c, splat(float(InkTable::kSteps)));
     const i8 i = _mm256_min_epi32(_mm256_cvttps_epi32(xs), _mm256_set1_epi32(InkTable::kSteps - 1));
     const f8 bit3 = _mm256_castsi256_ps(_mm256_slli_epi32(i, 28));  // bit 3 in the sign
@@ -233,9 +234,8 @@ inline f8 size8(const SizeFrame& f, f8 px, f8 py, f8 pz, const float* normals, f
         _mm256_mul_ps(_mm256_sqrt_ps(dot3(tx, ty, tz, tx, ty, tz)), splat(f.dot_area_per_region)));
     // smooth_size_from_ratio
     f8 t = _mm256_mul_ps(_mm256_sub_ps(_mm256_div_ps(num, den), one), splat(f.inv_slope));
-    t = select(_mm256_cmp_ps(t, zero, _CMP_LT_OQ), zero,
-               select(_mm256_cmp_ps(t, one, _CMP_GT_OQ), one, t));
-    return select(hidden, zero, _mm256_mul_ps(t, splat(s.max_point_size)));
+    t = _mm256_max_ps(zero, _mm256_min_ps(one, t));  // t < 0 ? 0 : (t > 1 ? 1 : t)
+    return _mm256_andnot_ps(hidden, _mm256_mul_ps(t, splat(s.max_point_size)));  // hidden: 0
 }
 
 }  // namespace
@@ -340,12 +340,12 @@ uint32_t triangle_stretch_avx2(const uint32_t* indices, const float* posed, cons
         };
         f8 m = ratio(a2, a);  // std::max({..}): the first largest
         const f8 r2 = ratio(c2, cc), r3 = ratio(e3, e3_bind);
-        m = select(_mm256_cmp_ps(m, r2, _CMP_LT_OQ), r2, m);
-        m = select(_mm256_cmp_ps(m, r3, _CMP_LT_OQ), r3, m);
+        m = _mm256_max_ps(r2, m);  // m < r2 ? r2 : m
+        m = _mm256_max_ps(r3, m);
         _mm256_storeu_ps(edge_ratio + t, m);
         const f8 det = _mm256_sub_ps(_mm256_mul_ps(a, cc), _mm256_mul_ps(b, b));
         const f8 det2 = _mm256_sub_ps(_mm256_mul_ps(a2, c2), _mm256_mul_ps(b2, b2));
-        const f8 kept = select(_mm256_cmp_ps(det2, zero, _CMP_LT_OQ), zero, det2);  // std::max
+        const f8 kept = _mm256_max_ps(zero, det2);  // std::max(det2, 0): det2 < 0 ? 0 : det2
         _mm256_storeu_ps(area_ratio + t, _mm256_div_ps(kept, det));
     }
     return t;
