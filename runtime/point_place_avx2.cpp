@@ -83,8 +83,7 @@ constexpr uint64_t kCornerMask = (uint64_t(1) << 21) - 1;
 // takes one step for the 4. len2 <= 1e-20 (or NaN) gives inv = +0, as place_point8.
 inline void place_points4(const float* pairs, const PointHost* hosts, const uint32_t* i,
                           float* out_positions, float* out_normals) {
-    __m128 p[4], n[4];
-    alignas(16) float len2[4];
+    __m128 p[4], n[4], nn[4];
     for (int k = 0; k < 4; ++k) {
         const PointHost h = hosts[i[k]];
         const float u = h.u, v = h.v, w = 1.0f - u - v;
@@ -96,10 +95,11 @@ inline void place_points4(const float* pairs, const PointHost* hosts, const uint
                           _mm256_mul_ps(splat(w), c));
         p[k] = _mm256_castps256_ps128(pn);
         n[k] = _mm256_extractf128_ps(pn, 1);
-        const __m128 nn = _mm_mul_ps(n[k], n[k]);
-        len2[k] = (lane0(nn) + lane<1>(nn)) + lane<2>(nn);
+        nn[k] = _mm_mul_ps(n[k], n[k]);
     }
-    const __m128 l = _mm_load_ps(len2);
+    // The 4 squares transposed, so each |n|^2 is (x x + y y) + z z in one vector's lanes.
+    _MM_TRANSPOSE4_PS(nn[0], nn[1], nn[2], nn[3]);
+    const __m128 l = _mm_add_ps(_mm_add_ps(nn[0], nn[1]), nn[2]);
     const __m128 inv = _mm_and_ps(_mm_cmpgt_ps(l, _mm_set1_ps(1e-20f)),
                                   _mm_div_ps(_mm_set1_ps(1.0f), _mm_sqrt_ps(l)));
     for (int k = 0; k < 4; ++k) {
@@ -111,20 +111,20 @@ inline void place_points4(const float* pairs, const PointHost* hosts, const uint
 }  // namespace
 
 // point_simd.cpp's pair_vertices, 4 vertices a step: each normal's |n|^2 summed as glm::length
-// does, (x x + y y) + z z, then the 4 roots and reciprocals in one vector (correctly rounded, so
-// the same bits as std::sqrt and 1 / len; len > 0 false for 0 and NaN: 1/|n| = +0).
+// does, (x x + y y) + z z (4 at once, the squares transposed), then the 4 roots and reciprocals in
+// one vector (correctly rounded, so the same bits as std::sqrt and 1 / len; len > 0 false for 0 and
+// NaN: 1/|n| = +0).
 void pair_vertices_avx2(uint32_t count, const float* positions, const float* normals, float* out) {
     uint32_t v = 0;
     for (; v + 4 <= count; v += 4) {
-        __m128 p[4], n[4];
-        alignas(16) float len2[4];
+        __m128 p[4], n[4], nn[4];
         for (int k = 0; k < 4; ++k) {
             p[k] = load3(positions + size_t(v + k) * 3);
             n[k] = load3(normals + size_t(v + k) * 3);
-            const __m128 nn = _mm_mul_ps(n[k], n[k]);
-            len2[k] = (lane0(nn) + lane<1>(nn)) + lane<2>(nn);
+            nn[k] = _mm_mul_ps(n[k], n[k]);
         }
-        const __m128 len = _mm_sqrt_ps(_mm_load_ps(len2));
+        _MM_TRANSPOSE4_PS(nn[0], nn[1], nn[2], nn[3]);  // as place_points4
+        const __m128 len = _mm_sqrt_ps(_mm_add_ps(_mm_add_ps(nn[0], nn[1]), nn[2]));
         const __m128 inv =
             _mm_and_ps(_mm_cmpgt_ps(len, _mm_setzero_ps()), _mm_div_ps(_mm_set1_ps(1.0f), len));
         for (int k = 0; k < 4; ++k) {
