@@ -9,15 +9,8 @@
 
 #include "runtime/point_simd.h"
 
-#if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
-#include <immintrin.h>
-
-#if defined(__clang__)
-#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
-#else
-#pragma GCC push_options
-#pragma GCC target("avx2")
-#endif
+#if STIPPLE_AVX2_KERNELS
+#include "runtime/point_simd_avx2_begin.inc"
 
 namespace stipple {
 
@@ -171,10 +164,5 @@ void place_points_avx2(const PointsView& points, const uint32_t* indices, const 
 
 }  // namespace stipple
 
-#if defined(__clang__)
-#pragma clang attribute pop
-#else
-#pragma GCC pop_options
-#endif
-
+#include "runtime/point_simd_avx2_end.inc"
 #endif

@@ -11,7 +11,7 @@ namespace {
 PointSimd detect() {
     const char* forced = std::getenv("STIPPLE_SIMD");
     if (forced && std::strcmp(forced, "baseline") == 0) return PointSimd::baseline;
-#if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
+#if STIPPLE_AVX2_KERNELS
     __builtin_cpu_init();
     if (__builtin_cpu_supports("avx2")) return PointSimd::avx2;
 #endif
@@ -79,7 +79,7 @@ bool quad_neighbours(const PointsView& points, uint32_t* out) {
     return true;
 }
 
-#if !((defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__)))
+#if !STIPPLE_AVX2_KERNELS
 // No AVX2 anywhere else: point_simd() is never avx2 there, so these are never called.
 void pair_vertices_avx2(uint32_t, const float*, const float*, float*) {}
 void place_points_avx2(const PointsView&, const uint32_t*, const PointHost*, const float*,

@@ -15,6 +15,14 @@
 #include "runtime/asset.h"
 #include "runtime/stipple_size.h"
 
+// 1 where the AVX2 kernels are compiled (x86 with GCC or clang, whose target pragmas and
+// intrinsics they use), else 0: their entry points are then stubs never called.
+#if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
+#define STIPPLE_AVX2_KERNELS 1
+#else
+#define STIPPLE_AVX2_KERNELS 0
+#endif
+
 namespace stipple {
 
 enum class PointSimd : uint8_t { baseline, avx2 };
