@@ -24,23 +24,40 @@ struct Box {
     glm::vec3 lo, hi;
 };
 
-// The box's 8 corners in clip space: outside when all lie beyond one plane. The renderer
-// drops a dot whose centre falls outside the image or the depth range (runtime/renderer.cpp),
-// so x and y get one pixel of margin for rounding and z none. Also the smallest clip w.
-bool outside_frustum(const Box& b, const glm::mat4& vp, const glm::vec2& margin, float* w_min) {
-    uint32_t all = 0x3F;
-    *w_min = 1e30f;
-    for (int corner = 0; corner < 8; ++corner) {
-        const glm::vec3 p((corner & 1) ? b.hi.x : b.lo.x, (corner & 2) ? b.hi.y : b.lo.y,
-                          (corner & 4) ? b.hi.z : b.lo.z);
-        const glm::vec4 q = vp * glm::vec4(p, 1.0f);
-        const float wx = q.w * (1.0f + margin.x), wy = q.w * (1.0f + margin.y);
-        const uint32_t out = (q.x > wx) | (q.x < -wx) << 1 | (q.y > wy) << 2 | (q.y < -wy) << 3 |
-                             (q.z > q.w) << 4 | (q.z < -q.w) << 5;
-        all &= out;
-        *w_min = std::min(*w_min, q.w);
-    }
-    return all != 0;
+// The view frustum as 6 planes in world space, a . (x, y, z, 1) > 0 beyond each, from the rows
+// of the view-projection: x > w (1 + margin.x), x < -w (1 + margin.x), the same for y, z > w and
+// z < -w. The renderer drops a dot whose centre falls outside the image or the depth range
+// (runtime/renderer.cpp), so x and y get one pixel of margin for rounding and z none. `w` is
+// clip w's row.
+struct Frustum {
+    glm::vec4 plane[6], w;
+};
+Frustum frustum_planes(const glm::mat4& vp, const glm::vec2& margin) {
+    const glm::mat4 t = glm::transpose(vp);  // t[r]: row r of vp
+    Frustum f;
+    f.w = t[3];
+    f.plane[0] = t[0] - (1.0f + margin.x) * t[3];
+    f.plane[1] = -t[0] - (1.0f + margin.x) * t[3];
+    f.plane[2] = t[1] - (1.0f + margin.y) * t[3];
+    f.plane[3] = -t[1] - (1.0f + margin.y) * t[3];
+    f.plane[4] = t[2] - t[3];
+    f.plane[5] = -t[2] - t[3];
+    return f;
+}
+
+// The least of a . (p, 1) over the box: at its centre less |a| . half its extent (a linear
+// function's least over a box; the same as the least over its 8 corners, up to rounding).
+float least_over(const glm::vec4& a, const glm::vec3& centre, const glm::vec3& half) {
+    return glm::dot(glm::vec3(a), centre) + a.w - glm::dot(glm::abs(glm::vec3(a)), half);
+}
+
+// Outside when the whole box lies beyond one plane; also the smallest clip w over the box.
+bool outside_frustum(const Box& b, const Frustum& f, float* w_min) {
+    const glm::vec3 centre = 0.5f * (b.lo + b.hi), half = 0.5f * (b.hi - b.lo);
+    *w_min = least_over(f.w, centre, half);
+    bool outside = false;
+    for (const glm::vec4& plane : f.plane) outside |= least_over(plane, centre, half) > 0.0f;
+    return outside;
 }
 
 // Points of cluster k whose radius bound times `stretch` passes `threshold`: the bounds are
@@ -145,13 +162,21 @@ bool cut_reaches(const PointClusters& c, uint32_t k, uint32_t keep, uint32_t fro
 // back-facing.
 constexpr uint8_t kKindCut = 1, kKindFrustum = 2, kKindBack = 4;
 
+// What every cluster's test reads: the frame, its frustum, focal length and ink bound.
+struct KeepTask {
+    PointClusters* c;
+    const LodFrame* f;
+    bool stretches;
+    float focal;
+    const InkBound* ink;
+    Frustum frustum;
+};
+
 // How many of cluster k's points can draw this frame (0: culled), what decided it in *kind.
-// Sets the cluster's cull factors (point_clusters.h) when it is not culled.
-uint32_t cluster_keep(PointClusters* c, uint32_t k, const LodFrame& f, bool stretches, float focal,
-                      const InkBound& ink, uint8_t* kind) {
+uint32_t cluster_keep(const KeepTask& t, uint32_t k, uint8_t* kind) {
+    PointClusters* c = t.c;
+    const LodFrame& f = *t.f;
     const SizeParams& params = *f.params;
-    const glm::vec2 margin(2.0f / float(std::max(f.viewport_width, 1)),
-                           2.0f / std::max(params.viewport_height, 1.0f));
     // The cluster's vertices in two passes (runtime/normal_bounds.h): box, cone axis and least
     // lighting, then the back-face test and the cone's slope bound (single-sided clusters).
     const uint32_t* vertices = c->vertices.get() + c->vertex_begin[k];
@@ -160,7 +185,7 @@ uint32_t cluster_keep(PointClusters* c, uint32_t k, const LodFrame& f, bool stre
     part_bounds(f.vertex_pairs, vertices, vertex_count, params, &part);
     const Box b{part.lo, part.hi};
     float w_min;
-    const bool outside = outside_frustum(b, params.view_projection, margin, &w_min);
+    const bool outside = outside_frustum(b, t.frustum, &w_min);
     *kind = 0;
     const bool single = c->single_sided[k] != 0;
     PartFacing facing;
@@ -177,11 +202,11 @@ uint32_t cluster_keep(PointClusters* c, uint32_t k, const LodFrame& f, bool stre
         return 0;
     }
     if (!(w_min > 0.0f)) return total;
-    const Stretch st = stretches ? cluster_stretches(*c, k) : Stretch{1.0f, 1.0f};
+    const Stretch st = t.stretches ? cluster_stretches(*c, k) : Stretch{1.0f, 1.0f};
     // Double-sided clusters: normals that turn toward the eye, no bound (normal_bounds.h).
     const float lit = single ? part_least_lighting(part, params) : 0.0f;
     const float slope = single ? facing.slope : 1.0f;
-    const float threshold = cut_per_w(params, focal, ink.at(lit)) * w_min / std::sqrt(slope);
+    const float threshold = cut_per_w(params, t.focal, t.ink->at(lit)) * w_min / std::sqrt(slope);
     uint32_t keep;
     if (!f.relevance_update)  // the rest-pose radii as they are
         keep = cut_length(*c, k, c->rest_bound.get(), 1.0f, threshold);
@@ -197,17 +222,9 @@ uint32_t cluster_keep(PointClusters* c, uint32_t k, const LodFrame& f, bool stre
 }
 
 // cluster_keep over a range of clusters (a thread's; each writes only its own clusters').
-struct KeepTask {
-    PointClusters* c;
-    const LodFrame* f;
-    bool stretches;
-    float focal;
-    const InkBound* ink;
-};
 void keep_range(void* context, uint32_t begin, uint32_t end) {
     const KeepTask& t = *static_cast<const KeepTask*>(context);
-    for (uint32_t k = begin; k < end; ++k)
-        t.c->keep[k] = cluster_keep(t.c, k, *t.f, t.stretches, t.focal, *t.ink, &t.c->keep_kind[k]);
+    for (uint32_t k = begin; k < end; ++k) t.c->keep[k] = cluster_keep(t, k, &t.c->keep_kind[k]);
 }
 
 // Below this many clusters (triangles) per thread the selection's loops run on the caller.
@@ -275,7 +292,11 @@ void point_clusters_select(PointClusters* c, const Asset& asset, const LodFrame&
                         &task);
     }
     const InkBound ink(params);
-    KeepTask task{c, &f, stretches, focal_pixels(params), &ink};
+    const glm::vec2 margin(2.0f / float(std::max(f.viewport_width, 1)),
+                           2.0f / std::max(params.viewport_height, 1.0f));
+    KeepTask task{c,         &f,
+                  stretches, focal_pixels(params),
+                  &ink,      frustum_planes(params.view_projection, margin)};
     thread_pool_run(pool, c->cluster_count, kMinClustersPerThread, keep_range, &task);
     LodStats s;
     s.clusters = c->cluster_count;
