@@ -334,7 +334,7 @@ void line_stages(Pipeline* p, StageTimes* t, StageClock::time_point* clock) {
     const bool facing = (p->config.silhouettes && a.edges.edge_count > 0) || creases;
     if (facing)
         triangle_facing(a.mesh.triangle_count, a.mesh.indices, p->vertex_positions.get(),
-                        p->size_params.eye, p->triangle_front.get());
+                        p->size_params.eye, p->triangle_front.get(), true);
     // The mesh pass draws only what may face the eye (runtime/renderer_front.cpp).
     renderer_set_front_faces(&p->renderer, facing ? p->triangle_front.get() : nullptr,
                              p->view_projection);

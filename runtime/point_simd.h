@@ -107,4 +107,10 @@ void relevance_size_avx2(const PointsView& points, const uint32_t* quads, const 
 uint32_t triangle_stretch_avx2(const uint32_t* indices, const float* posed, const float* gram,
                                uint32_t count, float* area_ratio, float* edge_ratio);
 
+// silhouette.cpp's triangle_facing for triangles 0 .. count - 1, 8 at a time (the same flags);
+// returns how many it did (the caller runs the scalar code on the rest). `positions` must have
+// kSimdPadFloats floats readable past its last vertex.
+uint32_t triangle_facing_avx2(const uint32_t* indices, const float* positions, const float* eye,
+                              uint32_t count, uint8_t* front);
+
 }  // namespace stipple

@@ -3,16 +3,20 @@
 #include <cstring>
 
 #include "runtime/asset_format.h"
+#include "runtime/point_simd.h"
 
 namespace stipple {
 
 void triangle_facing(uint32_t triangle_count, const uint32_t* indices, const float* positions,
-                     const glm::vec3& eye, uint8_t* front) {
+                     const glm::vec3& eye, uint8_t* front, bool padded) {
     // Nearly edge-on back faces (within about 0.9 degrees: cos < 1/64) are marked
     // kFacingEdgeOn: the depth pass keeps them (runtime/renderer_front.cpp), since the GPU's
     // snapped vertices can still turn them toward the eye by a sub-pixel area.
     constexpr float kEdgeOn2 = 1.0f / (64.0f * 64.0f);
-    for (uint32_t t = 0; t < triangle_count; ++t) {
+    uint32_t t = 0;  // runtime/point_simd.h: the same flags 8 triangles at a time
+    if (padded && point_simd() == PointSimd::avx2)
+        t = triangle_facing_avx2(indices, positions, &eye.x, triangle_count, front);
+    for (; t < triangle_count; ++t) {
         const uint32_t* tri = indices + size_t(t) * 3;
         const float* a = positions + size_t(tri[0]) * 3;
         const float* b = positions + size_t(tri[1]) * 3;

@@ -15,8 +15,10 @@ constexpr uint8_t kFacingBack = 0, kFacingFront = 1, kFacingEdgeOn = 2;
 
 // front[t] = kFacingFront (1) if triangle t faces the eye (counter-clockwise front faces,
 // glTF), else kFacingBack (0), or kFacingEdgeOn when it is within about 0.9 degrees of edge-on.
+// `padded`: positions has runtime/point_simd.h's kSimdPadFloats floats readable past its last
+// vertex (the pipeline's posed vertices), so the AVX2 kernel may run (the same flags).
 void triangle_facing(uint32_t triangle_count, const uint32_t* indices, const float* positions,
-                     const glm::vec3& eye, uint8_t* front);
+                     const glm::vec3& eye, uint8_t* front, bool padded = false);
 
 // Writes the endpoints of every silhouette edge (6 floats per line) into `out_lines`, which
 // must hold edges.edge_count * 6 floats; returns the number of lines.
