@@ -133,7 +133,7 @@ PartFacing part_facing(const float* pairs, const uint32_t* vertices, uint32_t co
                                     n.z >= 0.0f ? b.lo.z : b.hi.z);
             f.away = glm::dot(n, eye - nearest) < -1e-5f * len * scale;
         }
-        if (cone_wanted) cos_t = std::min(cos_t, glm::dot(axis, n) / len);
+        if (cone_wanted) cos_t = std::min(cos_t, glm::dot(axis, n) * v[7]);  // v[7]: 1 / |n|
     }
     if (cone_wanted) f.slope = cone_slope_bound(axis, cos_t, b.lo, b.hi, eye);
     return f;
