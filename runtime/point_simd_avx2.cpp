@@ -300,6 +300,25 @@ inline void corner8(const float* posed, const uint32_t* tri, int k, f8& x, f8& y
     xyz8(posed, false, 0, at, x, y, z);
 }
 
+// The 8 triangles tri[0 .. 24): their corner 0 and their edges from it (corner 1 - corner 0,
+// corner 2 - corner 0), across the lanes, formed as the scalar code forms them. The corners by
+// plain loads transposed into lanes (AVX2 gathers of scattered vertices measured 3x slower than
+// these on the horse).
+struct Edges8 {
+    f8 ox, oy, oz, e1x, e1y, e1z, e2x, e2y, e2z;
+};
+__attribute__((always_inline)) inline Edges8 edges8(const float* posed, const uint32_t* tri) {
+    Edges8 e;
+    corner8(posed, tri, 0, e.ox, e.oy, e.oz);
+    corner8(posed, tri, 1, e.e1x, e.e1y, e.e1z);
+    corner8(posed, tri, 2, e.e2x, e.e2y, e.e2z);
+    e.e1x = _mm256_sub_ps(e.e1x, e.ox), e.e1y = _mm256_sub_ps(e.e1y, e.oy);
+    e.e1z = _mm256_sub_ps(e.e1z, e.oz);
+    e.e2x = _mm256_sub_ps(e.e2x, e.ox), e.e2y = _mm256_sub_ps(e.e2y, e.oy);
+    e.e2z = _mm256_sub_ps(e.e2z, e.oz);
+    return e;
+}
+
 }  // namespace
 
 // point_clusters_select.cpp's triangle_stretch (the squared stretches of each triangle, bind
@@ -310,16 +329,9 @@ uint32_t triangle_stretch_avx2(const uint32_t* indices, const float* posed, cons
     const f8 zero = _mm256_setzero_ps(), one = splat(1.0f), huge = splat(1e30f), two = splat(2.0f);
     uint32_t t = 0;
     for (; t + 8 <= count; t += 8) {
-        // The corners by plain loads transposed into lanes (AVX2 gathers of scattered vertices
-        // measured 3x slower than these on the horse), the edges as the scalar code forms
-        // them; the 8 triangles' Gram entries are 24 consecutive floats.
-        const uint32_t* tri = indices + size_t(t) * 3;
-        f8 ox, oy, oz, e1x, e1y, e1z, e2x, e2y, e2z;
-        corner8(posed, tri, 0, ox, oy, oz);
-        corner8(posed, tri, 1, e1x, e1y, e1z);
-        corner8(posed, tri, 2, e2x, e2y, e2z);
-        e1x = _mm256_sub_ps(e1x, ox), e1y = _mm256_sub_ps(e1y, oy), e1z = _mm256_sub_ps(e1z, oz);
-        e2x = _mm256_sub_ps(e2x, ox), e2y = _mm256_sub_ps(e2y, oy), e2z = _mm256_sub_ps(e2z, oz);
+        // The 8 triangles' Gram entries are 24 consecutive floats.
+        const Edges8 e = edges8(posed, indices + size_t(t) * 3);
+        const f8 e1x = e.e1x, e1y = e.e1y, e1z = e.e1z, e2x = e.e2x, e2y = e.e2y, e2z = e.e2z;
         f8 a, b, cc;
         load_xyz8(gram + size_t(t) * 3, a, b, cc);
         const f8 a2 = dot3(e1x, e1y, e1z, e1x, e1y, e1z), b2 = dot3(e1x, e1y, e1z, e2x, e2y, e2z),
@@ -353,13 +365,9 @@ uint32_t triangle_facing_avx2(const uint32_t* indices, const float* positions, c
     const i8 one = _mm256_set1_epi32(1), two = _mm256_set1_epi32(2);
     uint32_t t = 0;
     for (; t + 8 <= count; t += 8) {
-        const uint32_t* tri = indices + size_t(t) * 3;
-        f8 ax, ay, az, ux, uy, uz, vx, vy, vz;
-        corner8(positions, tri, 0, ax, ay, az);
-        corner8(positions, tri, 1, ux, uy, uz);
-        corner8(positions, tri, 2, vx, vy, vz);
-        ux = _mm256_sub_ps(ux, ax), uy = _mm256_sub_ps(uy, ay), uz = _mm256_sub_ps(uz, az);
-        vx = _mm256_sub_ps(vx, ax), vy = _mm256_sub_ps(vy, ay), vz = _mm256_sub_ps(vz, az);
+        const Edges8 e = edges8(positions, indices + size_t(t) * 3);
+        const f8 ax = e.ox, ay = e.oy, az = e.oz, ux = e.e1x, uy = e.e1y, uz = e.e1z, vx = e.e2x,
+                 vy = e.e2y, vz = e.e2z;
         const f8 nx = _mm256_sub_ps(_mm256_mul_ps(uy, vz), _mm256_mul_ps(uz, vy));
         const f8 ny = _mm256_sub_ps(_mm256_mul_ps(uz, vx), _mm256_mul_ps(ux, vz));
         const f8 nz = _mm256_sub_ps(_mm256_mul_ps(ux, vy), _mm256_mul_ps(uy, vx));
