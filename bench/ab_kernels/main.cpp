@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "ab.h"
-#include "bench/bench_setup.h"
+#include "bench/ab_common.h"
 #include "runtime/frame_pipeline.h"
 using Clock = std::chrono::steady_clock;
 namespace {
@@ -101,22 +101,15 @@ void report(const AbState& s, const Outputs& o, const Outputs& n, const std::vec
 
 int main(int argc, char** argv) {
     stipple::Asset asset;
-    if (argc < 2 || !stipple::load_asset_file(argv[1], &asset).ok()) {
-        std::fprintf(stderr, "usage: ab FILE.stip [REPS] [PARTS 1|2|3] [FLUSH_MB]\n");
+    if (!stipple::bench::ab_load(argc, argv, "ab FILE.stip [REPS] [PARTS 1|2|3] [FLUSH_MB]",
+                                 &asset))
         return 1;
-    }
     const int reps = argc > 2 ? std::max(1, std::atoi(argv[2])) : 200;
     const int part = argc > 3 ? std::atoi(argv[3]) : 3;
     const size_t flush_mb = argc > 4 ? size_t(std::max(0, std::atoi(argv[4]))) : 0;
-    stipple::platform::HeadlessConfig hc;
-    hc.width = 1280;
-    hc.height = 720;
     stipple::bench::HeadlessGl context;
-    if (!stipple::bench::headless_gl(&context, hc)) return 1;
-    stipple::FrameConfig config;
-    config.width = 1280;
-    config.height = 720;
-    config.relevance_update = true;
+    if (!stipple::bench::ab_context(&context)) return 1;
+    const stipple::FrameConfig config = stipple::bench::ab_config();
     auto p = std::make_unique<stipple::Pipeline>();
     if (!stipple::pipeline_init(p.get(), asset, context.gl, config).ok()) return 1;
     stipple::AnimationState state;

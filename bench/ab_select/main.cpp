@@ -11,7 +11,7 @@
 #include <memory>
 #include <vector>
 
-#include "bench/bench_setup.h"
+#include "bench/ab_common.h"
 #include "runtime/frame_pipeline.h"
 #include "runtime/point_clusters.h"
 
@@ -74,20 +74,13 @@ double at(std::vector<double> v, double q) {
 
 int main(int argc, char** argv) {
     stipple::Asset asset;
-    if (argc < 2 || !stipple::load_asset_file(argv[1], &asset).ok()) {
-        std::fprintf(stderr, "usage: ab_select FILE.stip [CALLS] [FRAMES]\n");
+    if (!stipple::bench::ab_load(argc, argv, "ab_select FILE.stip [CALLS] [FRAMES]", &asset))
         return 1;
-    }
     const int frames = argc > 3 ? std::max(1, std::atoi(argv[3])) : 10;
     const int per_frame = std::max(1, (argc > 2 ? std::atoi(argv[2]) : 300) / frames);
-    stipple::platform::HeadlessConfig hc;
-    hc.width = 1280;
-    hc.height = 720;
     stipple::bench::HeadlessGl context;
-    if (!stipple::bench::headless_gl(&context, hc)) return 1;
-    stipple::FrameConfig config;
-    config.width = 1280;
-    config.height = 720;
+    if (!stipple::bench::ab_context(&context)) return 1;
+    const stipple::FrameConfig config = stipple::bench::ab_config();
     auto po = std::make_unique<stipple::Pipeline>(), pn = std::make_unique<stipple::Pipeline>();
     if (!stipple::pipeline_init(po.get(), asset, context.gl, config).ok() ||
         !stipple::pipeline_init(pn.get(), asset, context.gl, config).ok())
