@@ -4,6 +4,7 @@
 #include <cmath>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "runtime/frustum.h"
 #include "runtime/normal_bounds.h"
 #include "runtime/point_clusters.h"
 #include "runtime/point_simd.h"
@@ -24,39 +25,13 @@ struct Box {
     glm::vec3 lo, hi;
 };
 
-// The view frustum as 6 planes in world space, a . (x, y, z, 1) > 0 beyond each, from the rows
-// of the view-projection: x > w (1 + margin.x), x < -w (1 + margin.x), the same for y, z > w and
-// z < -w. The renderer drops a dot whose centre falls outside the image or the depth range
-// (runtime/renderer.cpp), so x and y get one pixel of margin for rounding and z none. `w` is
-// clip w's row.
-struct Frustum {
-    glm::vec4 plane[6], w;
-};
-Frustum frustum_planes(const glm::mat4& vp, const glm::vec2& margin) {
-    const glm::mat4 t = glm::transpose(vp);  // t[r]: row r of vp
-    Frustum f;
-    f.w = t[3];
-    f.plane[0] = t[0] - (1.0f + margin.x) * t[3];
-    f.plane[1] = -t[0] - (1.0f + margin.x) * t[3];
-    f.plane[2] = t[1] - (1.0f + margin.y) * t[3];
-    f.plane[3] = -t[1] - (1.0f + margin.y) * t[3];
-    f.plane[4] = t[2] - t[3];
-    f.plane[5] = -t[2] - t[3];
-    return f;
-}
-
-// The least of a . (p, 1) over the box: at its centre less |a| . half its extent (a linear
-// function's least over a box; the same as the least over its 8 corners, up to rounding).
-float least_over(const glm::vec4& a, const glm::vec3& centre, const glm::vec3& half) {
-    return glm::dot(glm::vec3(a), centre) + a.w - glm::dot(glm::abs(glm::vec3(a)), half);
-}
-
-// Outside when the whole box lies beyond one plane; also the smallest clip w over the box.
+// Outside when the whole box lies beyond one plane (runtime/frustum.h; the planes with one
+// pixel of margin in x and y: the renderer drops a dot whose centre falls outside the image or
+// the depth range, runtime/renderer.cpp); also the smallest clip w over the box.
 bool outside_frustum(const Box& b, const Frustum& f, float* w_min) {
-    const glm::vec3 centre = 0.5f * (b.lo + b.hi), half = 0.5f * (b.hi - b.lo);
-    *w_min = least_over(f.w, centre, half);
+    *w_min = least_over(f.w, b.lo, b.hi);
     bool outside = false;
-    for (const glm::vec4& plane : f.plane) outside |= least_over(plane, centre, half) > 0.0f;
+    for (const glm::vec4& plane : f.plane) outside |= least_over(plane, b.lo, b.hi) > 0.0f;
     return outside;
 }
 

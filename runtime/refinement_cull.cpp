@@ -4,6 +4,7 @@
 #include <cmath>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "runtime/frustum.h"
 #include "runtime/normal_bounds.h"
 
 namespace stipple {
@@ -95,27 +96,17 @@ float sigma2_once(RefinementCull* c, const MeshView& host, const float* posed, u
     return c->sigma[t];
 }
 
-// Whether every point of the box [lo, hi] lies outside one clip plane, and the box's least
-// clip w (minus a little slack).
-bool box_outside(const glm::mat4& m, const glm::vec3& lo, const glm::vec3& hi, float* w_min) {
-    const glm::vec4 rx(m[0][0], m[1][0], m[2][0], m[3][0]);
-    const glm::vec4 ry(m[0][1], m[1][1], m[2][1], m[3][1]);
-    const glm::vec4 rz(m[0][2], m[1][2], m[2][2], m[3][2]);
-    const glm::vec4 rw(m[0][3], m[1][3], m[2][3], m[3][3]);
+// Whether every point of the box [lo, hi] lies beyond one of the frustum's planes (margin 0),
+// and the box's least clip w (minus a little slack): runtime/frustum.h, with each test's slack
+// relative to the plane's size at the box.
+bool box_outside(const Frustum& f, const glm::vec3& lo, const glm::vec3& hi, float* w_min) {
     const glm::vec3 big = glm::max(glm::abs(lo), glm::abs(hi));
-    auto extreme = [&](const glm::vec4& r, bool upper, float* slack) {
-        float s = r.w;
-        for (int i = 0; i < 3; ++i) s += (r[i] > 0.0f) == upper ? r[i] * hi[i] : r[i] * lo[i];
-        *slack = 1e-5f * (std::fabs(r.x) * big.x + std::fabs(r.y) * big.y + std::fabs(r.z) * big.z +
-                          std::fabs(r.w));
-        return s;
+    auto slack = [&](const glm::vec4& a) {
+        return 1e-5f * (glm::dot(glm::abs(glm::vec3(a)), big) + std::fabs(a.w));
     };
-    float slack = 0.0f;
-    *w_min = extreme(rw, false, &slack);
-    *w_min -= slack;
-    const glm::vec4 planes[6] = {rw + rx, rw - rx, rw + ry, rw - ry, rw + rz, rw - rz};
-    for (const glm::vec4& plane : planes)
-        if (extreme(plane, true, &slack) < -slack) return true;
+    *w_min = least_over(f.w, lo, hi) - slack(f.w);
+    for (const glm::vec4& plane : f.plane)
+        if (least_over(plane, lo, hi) > slack(plane)) return true;
     return false;
 }
 
@@ -183,6 +174,7 @@ uint32_t refinement_cull(RefinementCull* c, const MeshView& host, const float* p
     const float dot_area = 0.785398163f * params.max_point_size * params.max_point_size;
     const float scale = (1.0f + kCullSlack) * focal * focal / dot_area;
     const float gap = seam_gap(*c, posed);
+    const Frustum frustum = frustum_planes(params.view_projection, glm::vec2(0.0f));
     for (uint32_t k = 0; k < c->cluster_count; ++k) {
         c->active[k] = 0;
         const float lower = stretch ? c->lower_stretch[k] : c->lower_rest[k];
@@ -200,7 +192,7 @@ uint32_t refinement_cull(RefinementCull* c, const MeshView& host, const float* p
                 hi = glm::max(hi, p);
             }
             float w_min = 0.0f;
-            if (finite && box_outside(params.view_projection, lo, hi, &w_min)) continue;
+            if (finite && box_outside(frustum, lo, hi, &w_min)) continue;
             if (finite) {
                 ratio = stretch ? INFINITY : 1.0f / lower;
                 const float w = std::max(w_min, near_w);
