@@ -98,6 +98,10 @@ uint32_t triangle_stretch_avx2(const uint32_t*, const float*, const float*, uint
 uint32_t triangle_facing_avx2(const uint32_t*, const float*, const float*, uint32_t, uint8_t*) {
     return 0;
 }
+uint32_t triangle_sigma2_avx2(const uint32_t*, uint32_t, const uint32_t*, const float*,
+                              const float*, float*) {
+    return 0;
+}
 #endif
 
 }  // namespace stipple

@@ -113,4 +113,10 @@ uint32_t triangle_stretch_avx2(const uint32_t* indices, const float* posed, cons
 uint32_t triangle_facing_avx2(const uint32_t* indices, const float* positions, const float* eye,
                               uint32_t count, uint8_t* front);
 
+// refinement_sigma.cpp's sigma2 into sigma[triangles[j]] for j in 0 .. count - 1, 4 at a time
+// in double lanes (the same bits); returns how many it did (the caller runs the scalar code on
+// the rest). Reads exactly 3 floats per vertex and per Gram entry: no padding needed.
+uint32_t triangle_sigma2_avx2(const uint32_t* triangles, uint32_t count, const uint32_t* indices,
+                              const float* posed, const float* bind_gram, float* sigma);
+
 }  // namespace stipple

@@ -10,6 +10,7 @@
 // a > b ? a : b). Every header is included before the target pragma, and only
 // intrinsics and this file's own internal functions run under it, so no inline function shared with
 // other files is compiled for AVX2 (which the linker could pick for the baseline callers too).
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
@@ -319,6 +320,24 @@ __attribute__((always_inline)) inline Edges8 edges8(const float* posed, const ui
     return e;
 }
 
+// The x, y, z of corner k of the 4 triangles listed at tris[0 .. 4), as doubles across 4 lanes
+// (float to double is exact: converting before or after the transpose gives the same values).
+// load3 reads exactly 3 floats, so `posed` needs no padding.
+inline void corner4d(const float* posed, const uint32_t* indices, const uint32_t* tris, int k,
+                     __m256d& x, __m256d& y, __m256d& z) {
+    __m128 r0 = load3(posed + size_t(indices[size_t(tris[0]) * 3 + k]) * 3);
+    __m128 r1 = load3(posed + size_t(indices[size_t(tris[1]) * 3 + k]) * 3);
+    __m128 r2 = load3(posed + size_t(indices[size_t(tris[2]) * 3 + k]) * 3);
+    __m128 r3 = load3(posed + size_t(indices[size_t(tris[3]) * 3 + k]) * 3);
+    _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+    x = _mm256_cvtps_pd(r0), y = _mm256_cvtps_pd(r1), z = _mm256_cvtps_pd(r2);
+}
+// dot3 in double lanes: x0 y0 + x1 y1 + x2 y2, left to right (glm::dot on dvec3).
+inline __m256d dot3d(__m256d x0, __m256d x1, __m256d x2, __m256d y0, __m256d y1, __m256d y2) {
+    return _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(x0, y0), _mm256_mul_pd(x1, y1)),
+                         _mm256_mul_pd(x2, y2));
+}
+
 }  // namespace
 
 // point_clusters_select.cpp's triangle_stretch (the squared stretches of each triangle, bind
@@ -387,6 +406,52 @@ uint32_t triangle_facing_avx2(const uint32_t* indices, const float* positions, c
         _mm_storel_epi64(reinterpret_cast<__m128i*>(front + t), _mm_packus_epi16(words, words));
     }
     return t;
+}
+
+// refinement_sigma.cpp's sigma2 for the triangles listed, 4 a step in double lanes: the same
+// differences, dot products, products, sums, root and divide in the same order, std::max as
+// max_pd(0, x) (0 > x ? 0 : x, x < 0 ? 0 : x with the same NaN), the same float rounding; returns
+// how many it did (a multiple of 4; the caller runs the scalar code on the rest).
+uint32_t triangle_sigma2_avx2(const uint32_t* triangles, uint32_t count, const uint32_t* indices,
+                              const float* posed, const float* bind_gram, float* sigma) {
+    using d4 = __m256d;
+    const d4 zero = _mm256_setzero_pd(), two = _mm256_set1_pd(2.0), four = _mm256_set1_pd(4.0);
+    const d4 tiny = _mm256_set1_pd(1e-10), above = _mm256_set1_pd(1.0 + 1e-5);
+    uint32_t j = 0;
+    for (; j + 4 <= count; j += 4) {
+        const uint32_t* tris = triangles + j;
+        d4 ax, ay, az, e1x, e1y, e1z, e2x, e2y, e2z;
+        corner4d(posed, indices, tris, 0, ax, ay, az);
+        corner4d(posed, indices, tris, 1, e1x, e1y, e1z);
+        corner4d(posed, indices, tris, 2, e2x, e2y, e2z);
+        e1x = _mm256_sub_pd(e1x, ax), e1y = _mm256_sub_pd(e1y, ay), e1z = _mm256_sub_pd(e1z, az);
+        e2x = _mm256_sub_pd(e2x, ax), e2y = _mm256_sub_pd(e2y, ay), e2z = _mm256_sub_pd(e2z, az);
+        const d4 p11 = dot3d(e1x, e1y, e1z, e1x, e1y, e1z),
+                 p12 = dot3d(e1x, e1y, e1z, e2x, e2y, e2z),
+                 p22 = dot3d(e2x, e2y, e2z, e2x, e2y, e2z);
+        __m128 g0 = load3(bind_gram + size_t(tris[0]) * 3),
+               g1 = load3(bind_gram + size_t(tris[1]) * 3);
+        __m128 g2 = load3(bind_gram + size_t(tris[2]) * 3),
+               g3 = load3(bind_gram + size_t(tris[3]) * 3);
+        _MM_TRANSPOSE4_PS(g0, g1, g2, g3);
+        const d4 g11 = _mm256_cvtps_pd(g0), g12 = _mm256_cvtps_pd(g1), g22 = _mm256_cvtps_pd(g2);
+        const d4 det = _mm256_sub_pd(_mm256_mul_pd(g11, g22), _mm256_mul_pd(g12, g12));
+        const d4 trace = _mm256_add_pd(g11, g22);
+        const d4 has_area =
+            _mm256_cmp_pd(det, _mm256_mul_pd(_mm256_mul_pd(tiny, trace), trace), _CMP_GT_OQ);
+        const d4 b = _mm256_sub_pd(_mm256_add_pd(_mm256_mul_pd(p11, g22), _mm256_mul_pd(p22, g11)),
+                                   _mm256_mul_pd(_mm256_mul_pd(two, p12), g12));
+        const d4 q = _mm256_sub_pd(_mm256_mul_pd(p11, p22), _mm256_mul_pd(p12, p12));
+        const d4 disc = _mm256_max_pd(
+            zero, _mm256_sub_pd(_mm256_mul_pd(b, b), _mm256_mul_pd(_mm256_mul_pd(four, det), q)));
+        const d4 s = _mm256_div_pd(_mm256_add_pd(b, _mm256_sqrt_pd(disc)), _mm256_mul_pd(two, det));
+        const d4 ok = _mm256_and_pd(has_area, _mm256_cmp_pd(s, s, _CMP_EQ_OQ));
+        const d4 value = _mm256_blendv_pd(_mm256_set1_pd(INFINITY), _mm256_mul_pd(s, above), ok);
+        alignas(16) float lanes[4];
+        _mm_store_ps(lanes, _mm256_cvtpd_ps(value));  // +inf stays +inf
+        for (int k = 0; k < 4; ++k) sigma[tris[k]] = lanes[k];
+    }
+    return j;
 }
 
 }  // namespace stipple

@@ -6,29 +6,11 @@
 
 #include "runtime/frustum.h"
 #include "runtime/normal_bounds.h"
+#include "runtime/refinement_sigma.h"
 
 namespace stipple {
 
 namespace {
-
-// The largest squared singular value of render triangle t's map from bind to posed pose (the
-// generalised eigenvalue of its posed and bind Gram matrices); +inf where the bind triangle
-// has no area or the pose is not finite.
-float sigma2(const RefinementCull& c, const MeshView& host, const float* posed, uint32_t t) {
-    const uint32_t* tri = host.indices + size_t(t) * 3;
-    const glm::dvec3 a = glm::make_vec3(posed + size_t(tri[0]) * 3);
-    const glm::dvec3 e1 = glm::dvec3(glm::make_vec3(posed + size_t(tri[1]) * 3)) - a;
-    const glm::dvec3 e2 = glm::dvec3(glm::make_vec3(posed + size_t(tri[2]) * 3)) - a;
-    const double p11 = glm::dot(e1, e1), p12 = glm::dot(e1, e2), p22 = glm::dot(e2, e2);
-    const float* g = c.bind_gram.get() + size_t(t) * 3;
-    const double g11 = g[0], g12 = g[1], g22 = g[2];
-    const double det = g11 * g22 - g12 * g12;
-    if (!(det > 1e-10 * (g11 + g22) * (g11 + g22))) return INFINITY;
-    const double b = p11 * g22 + p22 * g11 - 2.0 * p12 * g12;
-    const double disc = std::max(b * b - 4.0 * det * (p11 * p22 - p12 * p12), 0.0);
-    const double s = (b + std::sqrt(disc)) / (2.0 * det);
-    return s == s ? float(s * (1.0 + 1e-5)) : INFINITY;
-}
 
 // The largest eigenvalue of a symmetric 3x3 matrix (closed form), a little above.
 double max_eigenvalue(const glm::dmat3& a) {
@@ -87,13 +69,40 @@ float affine_ratio(const RefinementCull& c, const MeshView& host, const float* p
     return r == r ? float(r * (1.0 + 1e-6)) : INFINITY;
 }
 
-// sigma2, computed once per frame and render triangle (clusters' spans overlap).
-float sigma2_once(RefinementCull* c, const MeshView& host, const float* posed, uint32_t t) {
-    if (c->sigma_frame[t] != c->frame) {
-        c->sigma[t] = sigma2(*c, host, posed, t);
-        c->sigma_frame[t] = c->frame;
+// The box [lo, hi] of cluster k's host vertices, posed; false where a coordinate is not finite
+// (|x| < 1e30 fails: then the box is not used). Without branches: every vertex is visited, the
+// flags and bounds in registers.
+bool host_box(const RefinementCull& c, const float* posed, uint32_t k, glm::vec3* lo,
+              glm::vec3* hi) {
+    float lx = INFINITY, ly = INFINITY, lz = INFINITY, hx = -INFINITY, hy = -INFINITY,
+          hz = -INFINITY;
+    bool finite = true;
+    for (uint32_t j = c.host_begin[k]; j < c.host_begin[k + 1]; ++j) {
+        const float* p = posed + size_t(c.host_vertex[j]) * 3;
+        const float x = p[0], y = p[1], z = p[2];
+        finite &= (std::fabs(x) < 1e30f) & (std::fabs(y) < 1e30f) & (std::fabs(z) < 1e30f);
+        lx = std::min(lx, x), ly = std::min(ly, y), lz = std::min(lz, z);
+        hx = std::max(hx, x), hy = std::max(hy, y), hz = std::max(hz, z);
     }
-    return c->sigma[t];
+    *lo = glm::vec3(lx, ly, lz), *hi = glm::vec3(hx, hy, hz);
+    return finite;
+}
+
+// The largest sigma^2 (runtime/refinement_sigma.h) over cluster k's path triangles, each
+// triangle's computed once per frame (clusters' spans overlap): those not yet computed are
+// listed and done together (4 a step with AVX2).
+float span_sigma2(RefinementCull* c, const MeshView& host, const float* posed, uint32_t k) {
+    const uint32_t begin = c->span_begin[k], end = c->span_begin[k + 1];
+    uint32_t todo = 0;
+    for (uint32_t j = begin; j < end; ++j) {
+        const uint32_t t = c->span[j];
+        if (c->sigma_frame[t] != c->frame) c->sigma_frame[t] = c->frame, c->sigma_todo[todo++] = t;
+    }
+    refinement_sigma2_listed(c->sigma_todo.get(), todo, host.indices, posed, c->bind_gram.get(),
+                             c->sigma.get());
+    float l2 = 0.0f;
+    for (uint32_t j = begin; j < end; ++j) l2 = std::max(l2, c->sigma[c->span[j]]);
+    return l2;
 }
 
 // Whether every point of the box [lo, hi] lies beyond one of the frustum's planes (margin 0),
@@ -182,15 +191,8 @@ uint32_t refinement_cull(RefinementCull* c, const MeshView& host, const float* p
         float ratio = INFINITY;             // the bound on stretch_t / lower_t, if any
         float density_bound = INFINITY;     // the bound on need_t focal^2 / (dot area w_t^2)
         if (c->lower_rest[k] >= 0.0f) {     // every corner lies in its host: the box holds
-            glm::vec3 lo(INFINITY), hi(-INFINITY);
-            bool finite = true;
-            for (uint32_t j = c->host_begin[k]; j < c->host_begin[k + 1]; ++j) {
-                const glm::vec3 p = glm::make_vec3(posed + size_t(c->host_vertex[j]) * 3);
-                finite = finite && std::fabs(p.x) < 1e30f && std::fabs(p.y) < 1e30f &&
-                         std::fabs(p.z) < 1e30f;
-                lo = glm::min(lo, p);
-                hi = glm::max(hi, p);
-            }
+            glm::vec3 lo, hi;
+            const bool finite = host_box(*c, posed, k, &lo, &hi);
             float w_min = 0.0f;
             if (finite && box_outside(frustum, lo, hi, &w_min)) continue;
             if (finite) {
@@ -201,9 +203,7 @@ uint32_t refinement_cull(RefinementCull* c, const MeshView& host, const float* p
                 const bool paths = stretch && lower > 0.0f && gap < INFINITY;  // 0: no path
                 float l = 0.0f;
                 if (paths) {
-                    float l2 = 0.0f;
-                    for (uint32_t j = c->span_begin[k]; j < c->span_begin[k + 1]; ++j)
-                        l2 = std::max(l2, sigma2_once(c, host, posed, c->span[j]));
+                    const float l2 = span_sigma2(c, host, posed, k);
                     // |posed edge| <= L g + gap <= (L + gap / g_min) g
                     l = std::sqrt(l2) + gap / c->min_path[k];
                     if (scale * ink.at(0.0f) / (w * w) * l * l < lower) continue;

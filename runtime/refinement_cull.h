@@ -72,6 +72,7 @@ struct RefinementCull {
     Buffer<uint64_t> stamp;        // bit per corner: already listed
     Buffer<float> sigma;           // per render triangle: its squared stretch bound this frame
     Buffer<uint32_t> sigma_frame;  // per render triangle: the frame sigma was computed in
+    Buffer<uint32_t> sigma_todo;   // a cluster's span triangles whose sigma is not yet computed
     uint32_t frame = 0;
     // Per active cluster: an upper bound on max_t stretch_t / lower_t over its triangles (1 /
     // min lower_t with relevance updates off; INFINITY: none), the factor the cull multiplied

@@ -452,6 +452,7 @@ Status refinement_cull_init(RefinementCull* c, const MeshView& domain, const Mes
         !alloc(&c->list, points.point_count) || !alloc(&c->candidate, n) ||
         !alloc(&c->active_list, clusters) || !alloc(&c->refine_list, n) ||
         !alloc(&c->sigma, host.triangle_count) || !alloc(&c->sigma_frame, host.triangle_count) ||
+        !alloc(&c->sigma_todo, host.triangle_count) ||
         !alloc(&c->stamp, size_t(points.point_count) / 64 + 1))
         return no_memory(n);
     cluster_constants(c, b, bind_area, order.get(), tri_begin.get());
