@@ -21,7 +21,8 @@
 // Each round runs kFrames frames of each, replaying frame k of the clip in all of them.
 // Reports ms per frame (min and median over rounds), frame / floor, fps, process CPU time
 // and the stage times.
-// Own main (not benchmark_main): the rounds are interleaved by hand. `--rounds N`.
+// Own main (not benchmark_main): the rounds are interleaved by hand. `--rounds N`;
+// `--raster-threads N`: llvmpipe's rasterizer threads (bench/raster_threads.sh compares).
 #include <unistd.h>
 
 #include <algorithm>
@@ -534,19 +535,21 @@ void print_tables(const Case (&cases)[2], int rounds) {
     for (const Case& c : cases) report_rounds(c);
 }
 
-int rounds_from(int argc, char** argv) {
+// `--rounds N` (at least 1), `--raster-threads N` (platform/headless_context.h; -1: Mesa's).
+int option(int argc, char** argv, const char* name, int fallback) {
     for (int i = 1; i + 1 < argc; ++i)
-        if (std::strcmp(argv[i], "--rounds") == 0) return std::max(1, std::atoi(argv[i + 1]));
-    return 5;
+        if (std::strcmp(argv[i], name) == 0) return std::atoi(argv[i + 1]);
+    return fallback;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    const int rounds = rounds_from(argc, argv);
+    const int rounds = std::max(1, option(argc, argv, "--rounds", 5));
     stipple::platform::HeadlessConfig hc;
     hc.width = kWidth;
     hc.height = kHeight;
+    hc.raster_threads = option(argc, argv, "--raster-threads", -1);
     stipple::platform::HeadlessContext context;
     GlApi gl;
     if (!stipple::platform::create_headless_context(hc, &context).ok() ||

@@ -132,6 +132,22 @@ ContextStatus try_osmesa(const HeadlessConfig& config, HeadlessContext* out) {
 #endif
 }
 
+// Sets LP_NUM_THREADS for the life of this object where raster_threads asks for a count and
+// the environment has none.
+struct RasterThreads {
+    bool set = false;
+    explicit RasterThreads(int threads) {
+        if (threads < 0 || std::getenv("LP_NUM_THREADS")) return;
+        char value[16];
+        std::snprintf(value, sizeof(value), "%d",
+                      threads < kMaxRasterThreads ? threads : kMaxRasterThreads);
+        set = setenv("LP_NUM_THREADS", value, 0) == 0;
+    }
+    ~RasterThreads() {
+        if (set) unsetenv("LP_NUM_THREADS");
+    }
+};
+
 }  // namespace
 
 ContextStatus create_headless_context(const HeadlessConfig& config, HeadlessContext* out) {
@@ -139,6 +155,7 @@ ContextStatus create_headless_context(const HeadlessConfig& config, HeadlessCont
     if (!config.allow_egl && !config.allow_osmesa)
         return {ContextError::no_backend_allowed,
                 "no headless backend allowed (EGL and OSMesa off)"};
+    const RasterThreads raster(config.raster_threads);
     std::string tried;  // why each backend failed
     if (config.allow_egl) {
         ContextStatus st = try_egl_surfaceless(out);

@@ -21,11 +21,26 @@ struct ContextStatus {
     bool ok() const { return code == ContextError::ok; }
 };
 
+// The most rasterizer threads HeadlessConfig::raster_threads asks for (llvmpipe's own limit).
+constexpr int kMaxRasterThreads = 32;
+
 struct HeadlessConfig {
     int width = 640;  // OSMesa needs a buffer; EGL renders to the caller's FBO
     int height = 480;
     bool allow_egl = true;
     bool allow_osmesa = true;
+    // Rasterizer threads of Mesa's software driver (llvmpipe's LP_NUM_THREADS, read as the
+    // context's screen is made): -1 leaves the driver's default, a thread per core; 0 to
+    // kMaxRasterThreads (clamped) sets it. 0 rasterizes on the calling thread, inside glFlush and
+    // glFinish: on a 2-core machine the other core is then free for the point stages' worker
+    // (FrameConfig::threads 2), which llvmpipe's own threads otherwise contend with
+    // (docs/performance.md, seventeenth round). Mesa reads it when the display is initialised:
+    // it holds for the process's first headless context (or the first after every earlier one
+    // was destroyed); later ones share that display and its setting. Applied only where the
+    // environment does not set LP_NUM_THREADS itself, for this context's creation alone (the
+    // environment is restored after it: call from one thread, as for any setenv). Hardware
+    // drivers ignore it.
+    int raster_threads = -1;
 };
 
 struct HeadlessContext {

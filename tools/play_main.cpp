@@ -349,6 +349,7 @@ int main(int argc, char** argv) {
     hc.height = o.height;
     hc.allow_egl = o.backend != "osmesa";
     hc.allow_osmesa = o.backend != "egl";
+    hc.raster_threads = o.raster_threads;
     stipple::platform::HeadlessContext context;
     std::string error;
     const stipple::platform::ContextStatus created =

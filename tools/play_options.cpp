@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "platform/headless_context.h"
 #include "runtime/particle_style.h"
 #include "tools/cli_options.h"
 #include "tools/play_usage.h"
@@ -142,6 +143,7 @@ void add_render_options(stipple::cli::Parser& p, Options& o) {
         .flag("--no-lod", &o.lod, false)
         .flag("--no-occluder", &o.occluder, false)
         .integer("--threads", kLimits.threads.min, kLimits.threads.max, &o.threads)
+        .integer("--raster-threads", 0, stipple::platform::kMaxRasterThreads, &o.raster_threads)
         .number("--dark-tone", kLimits.dark_tone.min, kLimits.dark_tone.max, &o.dark_tone)
         .integer("--refinement-budget", kLimits.refinement_budget.min,
                  kLimits.refinement_budget.max, &o.refinement_budget)

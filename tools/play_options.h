@@ -38,6 +38,7 @@ struct Options {
     bool lod = kDefaults.lod;
     bool occluder = kDefaults.occluder;
     int threads = kDefaults.threads;  // --threads: the point stages' threads (0: hardware's)
+    int raster_threads = -1;          // --raster-threads: llvmpipe's (-1: the driver's default)
     bool dots_out = false, png = true, apng = true, stats = false;
     bool mask_out = false;
     bool hidden_out = false;  // --hidden-out: hidden_NNNN.csv beside dots_NNNN.csv

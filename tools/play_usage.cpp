@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "platform/headless_context.h"
 #include "runtime/frame_config.h"
 #include "tools/play_window.h"
 
@@ -100,6 +101,12 @@ std::string render_usage() {
            std::to_string(defaults().threads) + ", 0 = the hardware's up to " +
            std::to_string(stipple::kMaxAutoThreads) + ", max " +
            std::to_string(kLimits.threads.max) +
+           ")\n"
+           "  --raster-threads N      llvmpipe's rasterizer threads, headless (default: the\n"
+           "                          driver's, one per core; 0 = on the calling thread, which\n"
+           "                          with --threads 2 leaves a 2-core machine's other core to\n"
+           "                          the point stages; max " +
+           std::to_string(stipple::platform::kMaxRasterThreads) +
            ")\n"
            "  --dark-tone T           darkest tone lighting asks for, thesis §8.4 (default " +
            g(defaults().dark_tone) + ", " + range(kLimits.dark_tone) +

@@ -1,8 +1,12 @@
-// Static meshes from every supported file type bake and render, and the OSMesa fallback
-// draws the same frame as EGL.
+// Static meshes from every supported file type bake and render, the OSMesa fallback draws
+// the same frame as EGL, and llvmpipe's rasterizer on the calling thread (raster_threads 0)
+// takes no thread of its own and draws the same frame.
+#include <dirent.h>
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <fstream>
+#include <thread>
 
 #include "tests/common/fixtures.h"
 
@@ -65,6 +69,55 @@ TEST(Backends, OsmesaDrawsTheSameFrameAsEgl) {
     }
     EXPECT_EQ(run(bin("stipple-compare") + " " + dir + "/egl/frame_0001.png " + dir +
                       "/osmesa/frame_0001.png --tolerance 0 --max-fraction 0",
+                  &log),
+              0)
+        << log;
+}
+
+int process_threads() {
+    int n = 0;
+    DIR* dir = opendir("/proc/self/task");
+    if (!dir) return -1;
+    while (const dirent* e = readdir(dir)) n += e->d_name[0] != '.';
+    closedir(dir);
+    return n;
+}
+
+TEST(Backends, RasterThreadsZeroRasterizesOnTheCallingThread) {
+    if (std::getenv("LP_NUM_THREADS")) GTEST_SKIP() << "LP_NUM_THREADS is set: it wins";
+    int added[2] = {0, 0};  // threads a context adds: the driver's default, then 0
+    for (int k = 0; k < 2; ++k) {
+        const int before = process_threads();
+        stipple::platform::HeadlessConfig config;
+        config.raster_threads = k == 0 ? -1 : 0;
+        HeadlessGl gl;
+        std::string error;
+        ASSERT_TRUE(gl.open(&error, config)) << error;
+        if (gl.context().renderer.find("llvmpipe") == std::string::npos)
+            GTEST_SKIP() << "not llvmpipe: " << gl.context().renderer;
+        added[k] = process_threads() - before;
+        EXPECT_EQ(std::getenv("LP_NUM_THREADS"), nullptr) << "the environment is restored";
+    }
+    // Mesa may start one thread of its own either way (its shader cache's queue).
+    EXPECT_LE(added[1], 1) << "raster_threads 0: no rasterizer thread";
+    if (std::thread::hardware_concurrency() > 1) {
+        EXPECT_GE(added[0] - added[1], 2) << "llvmpipe's default: rasterizer threads per core";
+    }
+}
+
+TEST(Backends, RasterThreadsZeroDrawsTheSameFrames) {
+    const ScratchDir scratch;
+    const std::string dir = scratch.path();
+    const std::string asset = baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 20000");
+    ASSERT_FALSE(asset.empty());
+    const char* variants[2] = {"", " --raster-threads 0 --threads 2"};
+    for (int k = 0; k < 2; ++k)
+        ASSERT_EQ(run(play_checked() + " " + asset + " --out " + dir + "/" + std::to_string(k) +
+                      " --frames 3 --no-apng --size 320x240" + variants[k]),
+                  0);
+    std::string log;
+    EXPECT_EQ(run(bin("stipple-compare") + " " + dir + "/0/frame_0002.png " + dir +
+                      "/1/frame_0002.png --tolerance 0 --max-fraction 0",
                   &log),
               0)
         << log;
