@@ -81,18 +81,9 @@ std::string view_usage() {
            ", pitch " + range(kLimits.pitch_degrees) + "\n";
 }
 
-// The tone, look, paintstroke, output and debugging options.
-std::string render_usage() {
-    return "  --tone T                constant target tone " + range(kLimits.constant_tone) +
-           " instead of lighting (default:\n"
-           "                          lighting)\n"
-           "  --point-size PX         maximum stipple diameter (default " +
-           g(defaults().max_point_size) + ", " + range(kLimits.max_point_size) +
-           ")\n"
-           "  --background RRGGBB     background colour (default " +
-           background_default() +
-           ")\n"
-           "  --no-relevance-update   keep rest-pose relevance radii (thesis Alg. 6.3 without "
+// The point stages' options: relevance, level of detail, threads, tone cap, refinement.
+std::string stage_usage() {
+    return "  --no-relevance-update   keep rest-pose relevance radii (thesis Alg. 6.3 without "
            "6.4)\n"
            "  --no-lod                run place, relevance and size on every point (default: only\n"
            "                          clusters in view, cut where no dot can draw; docs/lod.md)\n"
@@ -114,8 +105,19 @@ std::string render_usage() {
            "  --refinement-budget N   extra points per frame where the baked hierarchy runs out\n"
            "                          (close-ups, stretch; default " +
            std::to_string(defaults().refinement_budget) + ", 0 = off, max " +
-           std::to_string(kLimits.refinement_budget.max) +
+           std::to_string(kLimits.refinement_budget.max) + ")\n";
+}
+
+// The tone, look, paintstroke, output and debugging options.
+std::string render_usage() {
+    return "  --tone T                constant target tone " + range(kLimits.constant_tone) +
+           " instead of lighting (default:\n"
+           "                          lighting)\n"
+           "  --point-size PX         maximum stipple diameter (default " +
+           g(defaults().max_point_size) + ", " + range(kLimits.max_point_size) +
            ")\n"
+           "  --background RRGGBB     background colour (default " +
+           background_default() + ")\n" + stage_usage() +
            "  --no-silhouettes        do not draw silhouette lines\n"
            "  --line-width PX         silhouette line width (default " +
            g(defaults().line_width) + ", " + range(kLimits.line_width) +
