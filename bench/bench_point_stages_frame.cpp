@@ -292,7 +292,7 @@ double stage_bytes(const Run& r, bool pairs) {
     const stipple::Pipeline& p = *r.pipeline;
     const double host = p.point_hosts ? 16 : 12;
     const double record = p.neighbour_quads ? 16 : 4, index = p.neighbour_quads ? 0 : 4;
-    const bool fused = stipple::point_simd() == stipple::PointSimd::avx2;
+    const bool fused = stipple::has_avx2(stipple::point_simd());
     const double vertices = p.vertex_pairs && pairs ? p.asset->mesh.vertex_count : 0;
     return r.placed * (host + 24) + r.run * (record + 4 + 12 + 4) + r.neighbours * (index + 12) +
            r.run * (fused ? 12 + 4 : 12 + 12 + 4 + 4) + vertices * (24 + 32);

@@ -157,7 +157,7 @@ Status alloc_frame_buffers(Pipeline* p) {
         !alloc(&p->lines, size_t(asset.edges.edge_count) * 6) ||
         !alloc(&p->vertex_pairs, verts * 8))
         return make_status(StatusCode::out_of_memory, "out of memory for %zu points", capacity);
-    if (point_simd_detected() == PointSimd::avx2) {  // the AVX2 kernels' 16-byte records, once
+    if (has_avx2(point_simd_detected())) {  // the AVX2 kernels' 16-byte records, once
         if (!alloc(&p->neighbour_quads, points * 4))
             return make_status(StatusCode::out_of_memory, "out of memory for %zu points", points);
         if (!quad_neighbours(asset.points, p->neighbour_quads.get())) p->neighbour_quads.reset();

@@ -220,7 +220,7 @@ void stretch_triangles(PointClusters* c, const MeshView& m, const float* posed, 
     float* edge_ratio = c->edge_ratio.get();
     const float* gram = c->bind_gram.get();
     uint32_t t = begin;  // runtime/point_simd.h: the same bits 8 triangles at a time
-    if (point_simd() == PointSimd::avx2)
+    if (has_avx2(point_simd()))
         t += triangle_stretch_avx2(m.indices + size_t(begin) * 3, posed, gram + size_t(begin) * 3,
                                    end - begin, area_ratio + begin, edge_ratio + begin);
     for (; t < end; ++t) {

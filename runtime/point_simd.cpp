@@ -13,7 +13,11 @@ PointSimd detect() {
     if (forced && std::strcmp(forced, "baseline") == 0) return PointSimd::baseline;
 #if STIPPLE_AVX2_KERNELS
     __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx2")) return PointSimd::avx2;
+    if (!__builtin_cpu_supports("avx2")) return PointSimd::baseline;
+    const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+                        __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw");
+    const bool capped = forced && std::strcmp(forced, "avx2") == 0;
+    return avx512 && !capped ? PointSimd::avx512 : PointSimd::avx2;
 #endif
     return PointSimd::baseline;
 }
@@ -34,14 +38,13 @@ PointSimd point_simd() {
 }
 
 void point_simd_force(PointSimd simd) {
-    // Forcing avx2 on a CPU without it (or with STIPPLE_SIMD=baseline) stays baseline.
-    if (simd == PointSimd::avx2 && point_simd_detected() != PointSimd::avx2)
-        simd = PointSimd::baseline;
+    // Forcing a path wider than the CPU's (or than STIPPLE_SIMD allows) takes the widest there is.
+    if (simd > point_simd_detected()) simd = point_simd_detected();
     g_forced.store(int(simd), std::memory_order_relaxed);
 }
 
 const char* point_simd_name(PointSimd simd) {
-    return simd == PointSimd::avx2 ? "avx2" : "baseline";
+    return simd == PointSimd::avx512 ? "avx512" : simd == PointSimd::avx2 ? "avx2" : "baseline";
 }
 
 void pair_vertices(uint32_t count, const float* positions, const float* normals, float* out) {
@@ -91,6 +94,9 @@ void size_stipples_avx2(const SizeFrame&, const float*, const float*, const floa
 void relevance_size_avx2(const PointsView&, const uint32_t*, const SizeFrame&, const float*,
                          const float*, const float*, const float*, const uint32_t*, uint32_t,
                          uint32_t, float*, float*) {}
+void relevance_size_avx512(const PointsView&, const uint32_t*, const SizeFrame&, const float*,
+                           const float*, const float*, const float*, const uint32_t*, uint32_t,
+                           uint32_t, float*, float*) {}
 uint32_t triangle_stretch_avx2(const uint32_t*, const float*, const float*, uint32_t, float*,
                                float*) {
     return 0;

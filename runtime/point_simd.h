@@ -25,26 +25,33 @@
 
 namespace stipple {
 
-enum class PointSimd : uint8_t { baseline, avx2 };
+// Ordered by width: avx512 runs every AVX2 kernel, and the fused relevance + size 16 points a
+// step (runtime/point_simd_avx512.cpp) where the CPU has AVX-512 F, VL, DQ and BW.
+enum class PointSimd : uint8_t { baseline, avx2, avx512 };
+
+// Whether `simd` runs the AVX2 kernels (avx2 and avx512 both do).
+inline bool has_avx2(PointSimd simd) {
+    return simd != PointSimd::baseline;
+}
 
 // The AVX2 kernels load a point's (or vertex's) x, y, z as one 16-byte load, so the arrays of 3
 // floats each they read by index (point positions and normals, posed vertex positions) must
 // have this many floats readable past their last entry; the pipeline allocates them so.
 inline constexpr size_t kSimdPadFloats = 1;
 
-// The widest path this CPU runs (cpuid once), or baseline where the environment sets
-// STIPPLE_SIMD=baseline (read once, at the first call).
+// The widest path this CPU runs (cpuid once), capped by the environment's STIPPLE_SIMD
+// (baseline or avx2; read once, at the first call).
 PointSimd point_simd_detected();
 
 // The path the point stages use now: point_simd_detected() unless point_simd_force chose
 // another.
 PointSimd point_simd();
 
-// Forces a path for the whole process (tests and benches compare them); a path the CPU lacks
-// falls back to baseline. Call between frames, not while stages run.
+// Forces a path for the whole process (tests and benches compare them); a path wider than
+// point_simd_detected() falls back to that one. Call between frames, not while stages run.
 void point_simd_force(PointSimd simd);
 
-const char* point_simd_name(PointSimd simd);  // "baseline", "avx2"
+const char* point_simd_name(PointSimd simd);  // "baseline", "avx2", "avx512"
 
 // The posed vertices as place's AVX2 kernel reads them: vertex v's position and normal in
 // out[8 v .. 8 v + 8) as x y z |n| nx ny nz 1/|n| (one 32-byte load per host corner instead of
@@ -80,7 +87,7 @@ constexpr uint32_t kQuadMaxPoints = 1u << 30;
 bool quad_neighbours(const PointsView& points, uint32_t* out);
 
 // The AVX2 kernels over the points list[begin .. end) (list null: the points begin .. end);
-// each writes only those points' outputs. Only call them when point_simd() is avx2. Place
+// each writes only those points' outputs. Only call them when has_avx2(point_simd()). Place
 // reads the vertices as pair_vertices lays them out, and the points' hosts from `hosts`
 // (point_hosts) when it is not null.
 void place_points_avx2(const PointsView& points, const uint32_t* indices, const PointHost* hosts,
@@ -101,6 +108,13 @@ void relevance_size_avx2(const PointsView& points, const uint32_t* quads, const 
                          const float* positions, const float* normals, const float* scale,
                          const float* fallback_radius, const uint32_t* list, uint32_t begin,
                          uint32_t end, float* out_radius, float* out_size);
+
+// relevance_size_avx2 16 points a step in AVX-512 lanes (runtime/point_simd_avx512.cpp), the
+// same bits; only when point_simd() is avx512.
+void relevance_size_avx512(const PointsView& points, const uint32_t* quads, const SizeFrame& frame,
+                           const float* positions, const float* normals, const float* scale,
+                           const float* fallback_radius, const uint32_t* list, uint32_t begin,
+                           uint32_t end, float* out_radius, float* out_size);
 
 // point_clusters_select.cpp's per-triangle squared stretches for triangles 0 .. count - 1,
 // 8 at a time; returns how many it did (the caller runs the scalar code on the rest).

@@ -12,13 +12,13 @@ struct StageTask {
     const PointStageFrame* f;
     const uint32_t* list;
     PointSimd simd;
-    const SizeFrame* size_frame;  // avx2 size only
+    const SizeFrame* size_frame;  // the AVX2 and AVX-512 size only
 };
 
 void place_range(void* context, uint32_t begin, uint32_t end) {
     const StageTask& t = *static_cast<const StageTask*>(context);
     const PointStageFrame& f = *t.f;
-    if (t.simd == PointSimd::avx2 && f.vertex_pairs) {
+    if (has_avx2(t.simd) && f.vertex_pairs) {
         place_points_avx2(*f.points, f.indices, f.point_hosts, f.vertex_pairs, t.list, begin, end,
                           f.positions, f.normals);
     } else if (t.list) {
@@ -38,7 +38,7 @@ void place_range(void* context, uint32_t begin, uint32_t end) {
 void relevance_range(void* context, uint32_t begin, uint32_t end) {
     const StageTask& t = *static_cast<const StageTask*>(context);
     const PointStageFrame& f = *t.f;
-    if (t.simd == PointSimd::avx2)
+    if (has_avx2(t.simd))
         recompute_relevance_avx2(*f.points, f.neighbour_quads, f.positions, f.scale,
                                  f.fallback_radius, t.list, begin, end, f.radius);
     else if (t.list)
@@ -52,7 +52,7 @@ void relevance_range(void* context, uint32_t begin, uint32_t end) {
 void size_range(void* context, uint32_t begin, uint32_t end) {
     const StageTask& t = *static_cast<const StageTask*>(context);
     const PointStageFrame& f = *t.f;
-    if (t.simd == PointSimd::avx2)
+    if (has_avx2(t.simd))
         size_stipples_avx2(*t.size_frame, f.positions, f.normals, f.radius, t.list, begin, end,
                            f.size);
     else if (t.list)
@@ -66,8 +66,9 @@ void size_range(void* context, uint32_t begin, uint32_t end) {
 void relevance_size_range(void* context, uint32_t begin, uint32_t end) {
     const StageTask& t = *static_cast<const StageTask*>(context);
     const PointStageFrame& f = *t.f;
-    relevance_size_avx2(*f.points, f.neighbour_quads, *t.size_frame, f.positions, f.normals,
-                        f.scale, f.fallback_radius, t.list, begin, end, f.radius, f.size);
+    (t.simd == PointSimd::avx512 ? relevance_size_avx512 : relevance_size_avx2)(
+        *f.points, f.neighbour_quads, *t.size_frame, f.positions, f.normals, f.scale,
+        f.fallback_radius, t.list, begin, end, f.radius, f.size);
 }
 
 }  // namespace
@@ -93,7 +94,7 @@ PointStageFrame point_stage_frame(Pipeline* p) {
 
 void point_stage_pair_vertices(Pipeline* p) {
     if (!p->vertex_pairs) return;
-    (point_simd() == PointSimd::avx2 ? pair_vertices_avx2 : pair_vertices)(
+    (has_avx2(point_simd()) ? pair_vertices_avx2 : pair_vertices)(
         p->asset->mesh.vertex_count, p->vertex_positions.get(), p->vertex_normals.get(),
         p->vertex_pairs.get());
 }
@@ -113,7 +114,7 @@ void point_stage_relevance(ThreadPool* pool, const PointStageFrame& f, const uin
 void point_stage_size(ThreadPool* pool, const PointStageFrame& f, const uint32_t* list,
                       uint32_t count) {
     const PointSimd simd = point_simd();
-    if (simd == PointSimd::avx2) {
+    if (has_avx2(simd)) {
         const SizeFrame frame(*f.params);  // once for every range
         StageTask task{&f, list, simd, &frame};
         thread_pool_run(pool, count, kMinPointsPerThread, size_range, &task);
@@ -126,7 +127,7 @@ void point_stage_size(ThreadPool* pool, const PointStageFrame& f, const uint32_t
 bool point_stage_relevance_size(ThreadPool* pool, const PointStageFrame& f, const uint32_t* list,
                                 uint32_t count) {
     const PointSimd simd = point_simd();
-    if (simd != PointSimd::avx2) return false;
+    if (!has_avx2(simd)) return false;
     const SizeFrame frame(*f.params);  // once for every range
     StageTask task{&f, list, simd, &frame};
     thread_pool_run(pool, count, kMinPointsPerThread, relevance_size_range, &task);

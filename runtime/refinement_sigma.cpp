@@ -32,7 +32,7 @@ float refinement_sigma2(const uint32_t* indices, const float* posed, const float
 void refinement_sigma2_listed(const uint32_t* triangles, uint32_t count, const uint32_t* indices,
                               const float* posed, const float* bind_gram, float* sigma) {
     uint32_t j = 0;
-    if (point_simd() == PointSimd::avx2)
+    if (has_avx2(point_simd()))
         j = triangle_sigma2_avx2(triangles, count, indices, posed, bind_gram, sigma);
     for (; j < count; ++j)
         sigma[triangles[j]] = refinement_sigma2(indices, posed, bind_gram, triangles[j]);

@@ -14,7 +14,7 @@ void triangle_facing(uint32_t triangle_count, const uint32_t* indices, const flo
     // snapped vertices can still turn them toward the eye by a sub-pixel area.
     constexpr float kEdgeOn2 = 1.0f / (64.0f * 64.0f);
     uint32_t t = 0;  // runtime/point_simd.h: the same flags 8 triangles at a time
-    if (padded && point_simd() == PointSimd::avx2)
+    if (padded && has_avx2(point_simd()))
         t = triangle_facing_avx2(indices, positions, &eye.x, triangle_count, front);
     for (; t < triangle_count; ++t) {
         const uint32_t* tri = indices + size_t(t) * 3;

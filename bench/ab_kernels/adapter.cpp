@@ -6,6 +6,10 @@
 #ifndef FRAME
 #define FRAME SizeFrame
 #endif
+// RELEVANCE_SIZE: the fused kernel to time (build.sh: NEW_RELEVANCE_SIZE=relevance_size_avx512).
+#ifndef RELEVANCE_SIZE
+#define RELEVANCE_SIZE relevance_size_avx2
+#endif
 #define CAT2(a, b) a##b
 #define CAT(a, b) CAT2(a, b)
 void STAGES(const AbState& s, int part) {
@@ -23,7 +27,7 @@ void STAGES(const AbState& s, int part) {
         quads.resize(size_t(points.point_count) * 4);
         if (!stipple::quad_neighbours(points, quads.data())) quads.clear();
     }
-    stipple::relevance_size_avx2(points, quads.empty() ? nullptr : quads.data(), frame, s.positions,
-                                 s.normals, s.scale, s.fallback, s.run, 0, s.run_count, s.radius,
-                                 s.size);
+    stipple::RELEVANCE_SIZE(points, quads.empty() ? nullptr : quads.data(), frame, s.positions,
+                            s.normals, s.scale, s.fallback, s.run, 0, s.run_count, s.radius,
+                            s.size);
 }

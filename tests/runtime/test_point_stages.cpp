@@ -23,6 +23,7 @@
 namespace {
 
 using stipple::Pipeline;
+using stipple::PointSimd;
 
 // The CPU outputs of a pipeline's last update, point by point, and its compacted dots.
 struct Outputs {
@@ -163,7 +164,7 @@ TEST_F(PointStagesTest, ThreadsGiveByteIdenticalPointsOnBothSimdPaths) {
 
 // The pipeline's frames on the baseline path and on the run-time path: the same bytes.
 TEST_F(PointStagesTest, SimdPathsGiveByteIdenticalFrames) {
-    if (stipple::point_simd_detected() != stipple::PointSimd::avx2)
+    if (!stipple::has_avx2(stipple::point_simd_detected()))
         GTEST_SKIP() << "this CPU has no AVX2 (or STIPPLE_SIMD=baseline): one path only";
     for (const bool lod : {true, false}) {
         stipple::FrameConfig config;
@@ -178,11 +179,15 @@ TEST_F(PointStagesTest, SimdPathsGiveByteIdenticalFrames) {
             stipple::point_simd_force(stipple::PointSimd::baseline);
             stipple::pipeline_update(p.get(), state, nullptr);
             const Outputs base = outputs(*p);
-            stipple::point_simd_force(stipple::PointSimd::avx2);
-            ASSERT_EQ(stipple::point_simd(), stipple::PointSimd::avx2);
-            stipple::pipeline_update(p.get(), state, nullptr);
-            expect_identical(base, outputs(*p),
-                             std::string(lod ? "LOD" : "no LOD") + ", frame " + std::to_string(f));
+            for (const PointSimd simd : {PointSimd::avx2, PointSimd::avx512}) {
+                if (simd > stipple::point_simd_detected()) continue;  // no AVX-512 here
+                stipple::point_simd_force(simd);
+                ASSERT_EQ(stipple::point_simd(), simd);
+                stipple::pipeline_update(p.get(), state, nullptr);
+                expect_identical(base, outputs(*p),
+                                 std::string(lod ? "LOD" : "no LOD") + ", frame " +
+                                     std::to_string(f) + ", " + stipple::point_simd_name(simd));
+            }
         }
         stipple::pipeline_destroy(p.get());
     }
@@ -191,7 +196,7 @@ TEST_F(PointStagesTest, SimdPathsGiveByteIdenticalFrames) {
 // Each kernel against its scalar original on hostile inputs: zero and NaN normals, points
 // behind the eye and the camera plane, no neighbours, every scale sign, lists with tails.
 TEST_F(PointStagesTest, SimdKernelsMatchTheScalarCodeOnEdgeCases) {
-    if (stipple::point_simd_detected() != stipple::PointSimd::avx2)
+    if (!stipple::has_avx2(stipple::point_simd_detected()))
         GTEST_SKIP() << "this CPU has no AVX2 (or STIPPLE_SIMD=baseline): one path only";
     // The asset's points with every 17th point's neighbours removed (no-neighbour branches).
     stipple::PointsView pts = asset_.points;
@@ -217,8 +222,10 @@ TEST_F(PointStagesTest, SimdKernelsMatchTheScalarCodeOnEdgeCases) {
     std::vector<float> bind(size_t(n) * 3), bind_n(size_t(n) * 3);
     stipple::place_points(pts, m.indices, m.positions, m.normals, bind.data(), bind_n.data());
     stipple::relevance_scale(pts, bind.data(), scale.data());
-    for (uint32_t i = 0; i < n; i += 13) scale[i] = -std::fabs(scale[i]);  // mean distance
-    for (uint32_t i = 5; i < n; i += 29) scale[i] = 0.0f;                  // fallback
+    // In the first half only: the second half's blocks of 16 all take the area measure (the
+    // AVX-512 step; a block with another scale goes to the AVX2 one).
+    for (uint32_t i = 0; i < n / 2; i += 13) scale[i] = -std::fabs(scale[i]);  // mean distance
+    for (uint32_t i = 5; i < n / 2; i += 29) scale[i] = 0.0f;                  // fallback
     scale[7] = std::numeric_limits<float>::quiet_NaN();
     stipple::SizeParams params;
     params.view_projection = glm::mat4(1.0f);
@@ -241,10 +248,13 @@ TEST_F(PointStagesTest, SimdKernelsMatchTheScalarCodeOnEdgeCases) {
     ASSERT_TRUE(stipple::point_hosts(pts, m.indices, m.vertex_count, hosts.data()));
     struct Run {
         std::vector<float> pos, nrm, radius, size;
-    } run[4];
-    // baseline, AVX2 on the asset's arrays, on its own records, and with relevance and size fused
-    for (int path = 0; path < 4; ++path) {
-        stipple::point_simd_force(path ? stipple::PointSimd::avx2 : stipple::PointSimd::baseline);
+    } run[5];
+    // baseline, AVX2 on the asset's arrays, on its own records, with relevance and size fused,
+    // and fused 16 points a step (AVX-512, where the CPU has it: else the AVX2 fused again)
+    for (int path = 0; path < 5; ++path) {
+        stipple::point_simd_force(path == 0   ? PointSimd::baseline
+                                  : path == 4 ? PointSimd::avx512
+                                              : PointSimd::avx2);
         Run& r = run[path];
         r.pos.assign(size_t(n) * 3 + stipple::kSimdPadFloats, -1.0f);  // 16-byte loads
         r.nrm.assign(size_t(n) * 3 + stipple::kSimdPadFloats, -1.0f);
@@ -268,7 +278,7 @@ TEST_F(PointStagesTest, SimdKernelsMatchTheScalarCodeOnEdgeCases) {
         stipple::ThreadPool pool;                              // one thread: the kernels alone
         stipple::point_stage_place(&pool, f, nullptr, n - 3);  // a tail, and 3 points unplaced
         stipple::point_stage_place(&pool, f, list.data(), uint32_t(list.size()));
-        if (path == 3) {
+        if (path >= 3) {
             ASSERT_TRUE(stipple::point_stage_relevance_size(&pool, f, nullptr, n - 3));
             ASSERT_TRUE(
                 stipple::point_stage_relevance_size(&pool, f, list.data(), uint32_t(list.size())));
@@ -279,7 +289,7 @@ TEST_F(PointStagesTest, SimdKernelsMatchTheScalarCodeOnEdgeCases) {
         stipple::point_stage_size(&pool, f, nullptr, n - 3);
         stipple::point_stage_size(&pool, f, list.data(), uint32_t(list.size()));
     }
-    for (int path = 1; path < 4; ++path) {
+    for (int path = 1; path < 5; ++path) {
         EXPECT_TRUE(same_bytes(run[0].pos, run[path].pos)) << path;
         EXPECT_TRUE(same_bytes(run[0].nrm, run[path].nrm)) << path;
         EXPECT_TRUE(same_bytes(run[0].radius, run[path].radius)) << path;
@@ -372,7 +382,7 @@ TEST(ThreadPool, RangesCoverEveryIndexOnce) {
 // normals include zero, NaN, infinite, subnormal and huge ones: the same bytes, and |n|, 1/|n|
 // as stated (1/|n| = 0 where |n| is not > 0).
 TEST(PointSimdPairs, Avx2PairsMatchTheScalarPairs) {
-    if (stipple::point_simd_detected() != stipple::PointSimd::avx2)
+    if (!stipple::has_avx2(stipple::point_simd_detected()))
         GTEST_SKIP() << "this CPU has no AVX2 (or STIPPLE_SIMD=baseline): one path only";
     const uint32_t n = 23;
     std::vector<float> positions(n * 3), normals(n * 3);

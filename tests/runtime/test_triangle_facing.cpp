@@ -57,7 +57,7 @@ std::vector<uint8_t> facing(const Soup& s, const glm::vec3& eye, PointSimd simd,
 }
 
 TEST(TriangleFacing, SimdKernelGivesTheScalarFlags) {
-    if (stipple::point_simd_detected() != PointSimd::avx2)
+    if (!stipple::has_avx2(stipple::point_simd_detected()))
         GTEST_SKIP() << "this CPU has no AVX2 (or STIPPLE_SIMD=baseline): one path only";
     // Eyes off the plane z = 0 of the hostile triangles, in it (every one of them edge-on) and
     // at a corner.
