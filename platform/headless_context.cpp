@@ -13,6 +13,8 @@
 #include <cstring>
 #include <utility>
 
+#include "platform/raster_threads.h"
+
 namespace stipple::platform {
 
 namespace {
@@ -131,22 +133,6 @@ ContextStatus try_osmesa(const HeadlessConfig& config, HeadlessContext* out) {
     return failed("built without OSMesa");
 #endif
 }
-
-// Sets LP_NUM_THREADS for the life of this object where raster_threads asks for a count and
-// the environment has none.
-struct RasterThreads {
-    bool set = false;
-    explicit RasterThreads(int threads) {
-        if (threads < 0 || std::getenv("LP_NUM_THREADS")) return;
-        char value[16];
-        std::snprintf(value, sizeof(value), "%d",
-                      threads < kMaxRasterThreads ? threads : kMaxRasterThreads);
-        set = setenv("LP_NUM_THREADS", value, 0) == 0;
-    }
-    ~RasterThreads() {
-        if (set) unsetenv("LP_NUM_THREADS");
-    }
-};
 
 }  // namespace
 

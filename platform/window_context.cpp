@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <utility>
 
+#include "platform/raster_threads.h"
+
 #ifdef STIPPLE_HAVE_X11
 #include <X11/Xatom.h>
 #include <X11/Xlib.h>
@@ -102,6 +104,7 @@ ContextStatus open_x_window(const WindowConfig& wc, EGLDisplay egl, EGLConfig co
 
 // The EGL window surface and a current GLES 3 context on it.
 ContextStatus make_window_context(const WindowConfig& wc, WindowContext* out) {
+    const RasterThreads raster(wc.raster_threads);  // read in eglInitialize
     EGLDisplay egl = eglGetPlatformDisplay(EGL_PLATFORM_X11_KHR, out->x_display, nullptr);
     if (egl == EGL_NO_DISPLAY) return failed("EGL has no X11 platform display");
     EGLint major = 0, minor = 0;

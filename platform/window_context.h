@@ -26,6 +26,9 @@ struct WindowConfig {
     bool fullscreen = false;  // asks the window manager (_NET_WM_STATE_FULLSCREEN)
     std::string title = "stipple";
     bool vsync = true;  // eglSwapInterval 1
+    // llvmpipe's rasterizer threads while the window's display is initialised: as
+    // HeadlessConfig::raster_threads (-1: the driver's default; 0 .. kMaxRasterThreads).
+    int raster_threads = -1;
 };
 
 struct WindowContext {

@@ -340,7 +340,7 @@ int main(int argc, char** argv) {
     const Clips clips = find_clips(asset, o);
     if (o.win.window)
         return stipple::play::run_kiosk({&asset, pipeline_config(o, clips), clips.clip, o.time0,
-                                         o.frames_given ? o.frames : 0, o.out},
+                                         o.frames_given ? o.frames : 0, o.out, o.raster_threads},
                                         o.win, stipple::play::parser());
     make_output_dir(o.out);
 

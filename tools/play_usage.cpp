@@ -93,10 +93,10 @@ std::string stage_usage() {
            std::to_string(stipple::kMaxAutoThreads) + ", max " +
            std::to_string(kLimits.threads.max) +
            ")\n"
-           "  --raster-threads N      llvmpipe's rasterizer threads, headless (default: the\n"
-           "                          driver's, one per core; 0 = on the calling thread, which\n"
-           "                          with --threads 2 leaves a 2-core machine's other core to\n"
-           "                          the point stages; max " +
+           "  --raster-threads N      llvmpipe's rasterizer threads, headless and --window\n"
+           "                          (default: the driver's, one per core; 0 = on the calling\n"
+           "                          thread, which with --threads 2 leaves a 2-core machine's\n"
+           "                          other core to the point stages; max " +
            std::to_string(stipple::platform::kMaxRasterThreads) +
            ")\n"
            "  --dark-tone T           darkest tone lighting asks for, thesis §8.4 (default " +

@@ -93,6 +93,7 @@ void open_kiosk(const KioskPlay& play, const WindowOptions& o, const cli::Parser
     wc.height = play.config.height;
     wc.fullscreen = o.fullscreen;
     wc.title = "stipple";
+    wc.raster_threads = play.raster_threads;
     const platform::ContextStatus created = platform::create_window_context(wc, &k->window);
     if (!created.ok()) parser.fail(created.message);
     const Status loaded = load_gl_api(platform::window_proc_loader(k->window), &k->gl);

@@ -29,11 +29,12 @@ void add_window_options(cli::Parser& parser, WindowOptions* options);
 // What the kiosk plays.
 struct KioskPlay {
     const Asset* asset = nullptr;
-    FrameConfig config;  // as headless (size, camera, tone...): the first frame's settings
-    int clip = -1;       // -1: the rest pose
-    double time0 = 0;    // clip time of the first frame (seconds)
-    long frames = 0;     // > 0: quit after this many frames; 0: run until Esc or close
-    std::string out;     // where S saves PNGs ("": the current directory)
+    FrameConfig config;       // as headless (size, camera, tone...): the first frame's settings
+    int clip = -1;            // -1: the rest pose
+    double time0 = 0;         // clip time of the first frame (seconds)
+    long frames = 0;          // > 0: quit after this many frames; 0: run until Esc or close
+    std::string out;          // where S saves PNGs ("": the current directory)
+    int raster_threads = -1;  // --raster-threads (platform::WindowConfig::raster_threads)
 };
 
 // Opens the window and plays until Esc, the window's close button or `play.frames`. Returns

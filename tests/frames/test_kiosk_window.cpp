@@ -68,6 +68,30 @@ TEST(KioskWindow, ScreenshotEqualsTheHeadlessFrame) {
         << log;
 }
 
+// --raster-threads reaches the window's display too (platform::WindowConfig::raster_threads):
+// llvmpipe rasterizing on the calling thread, with the point part on the worker, draws the
+// same screenshot as the driver's default, byte for byte.
+TEST(KioskWindow, RasterThreadsZeroDrawsTheSameScreenshot) {
+    if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run not found (Debian package xvfb)";
+    const std::string asset = baked_asset("assets/CesiumMan/CesiumMan.glb", "--points 10000");
+    ASSERT_FALSE(asset.empty());
+    ScratchDir dir;
+    const char* variants[2] = {"", " --raster-threads 0 --threads 2"};
+    std::string log;
+    for (int k = 0; k < 2; ++k)
+        ASSERT_EQ(run(under_xvfb(play_checked() + " " + asset + " --window --size 320x240" +
+                                 variants[k] + " --frames 3 --fixed-time 0.5 --screenshot " +
+                                 dir.file("shot" + std::to_string(k) + ".png")),
+                      &log),
+                  0)
+            << variants[k] << ": " << log;
+    EXPECT_EQ(run(bin("stipple-compare") + " " + dir.file("shot0.png") + " " +
+                      dir.file("shot1.png") + " --tolerance 0",
+                  &log),
+              0)
+        << log;
+}
+
 TEST(KioskWindow, AnotherTimeDoesNotMatch) {
     // The comparison is not vacuous: the window at another clip time differs.
     if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run not found (Debian package xvfb)";
