@@ -6,22 +6,24 @@
 # on the calling thread), alternating, and reports for each setting
 # the frame (1 and 2 threads, with and without the occluder) and the floor (ms per frame, each
 # run's min over its rounds): medians over the runs, 0 / default pair by pair, and each
-# setting's frame over its own floor.
-#   bench/raster_threads.sh [RUNS] [ROUNDS]      (after ./scripts/setup.sh or a Release build)
+# setting's frame over its own floor. RASTER=N compares --raster-threads N instead of 0.
+#   [RASTER=N] bench/raster_threads.sh [RUNS] [ROUNDS]   (after a Release build)
 set -euo pipefail
 RUNS=${1:-4}
 ROUNDS=${2:-3}
+RASTER=${RASTER:-0}
 BIN=${BIN:-$(cd "$(dirname "$0")/.." && pwd)/build/bin/stipple_bench_frame_floor}
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
 for i in $(seq "$RUNS"); do
-    echo "run $i of $RUNS: Mesa's default, then --raster-threads 0" >&2
+    echo "run $i of $RUNS: Mesa's default, then --raster-threads $RASTER" >&2
     "$BIN" --rounds "$ROUNDS" >"$OUT/default.$i.txt"
-    "$BIN" --rounds "$ROUNDS" --raster-threads 0 >"$OUT/zero.$i.txt"
+    "$BIN" --rounds "$ROUNDS" --raster-threads "$RASTER" >"$OUT/zero.$i.txt"
 done
-python3 - "$OUT" "$RUNS" <<'PY'
+python3 - "$OUT" "$RUNS" "$RASTER" <<'PY'
 import sys
-out, runs = sys.argv[1], int(sys.argv[2])
+out, runs, n = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+label_n = '0 (calling thread)' if n == '0' else n
 def first(cell):  # "min / median" -> min
     return float(cell.split('/')[0])
 def read(path):
@@ -48,10 +50,10 @@ def median(v):
     return v[len(v) // 2] if len(v) % 2 else 0.5 * (v[len(v) // 2 - 1] + v[len(v) // 2])
 keys = [('floor', 'floor'), ('frame', 'frame, 1 thread'), ('two', 'frame, 2 threads'),
         ('occluder_two', 'occluder, 2 threads')]
-print(f'{runs} pairs of runs (Mesa\'s default, then 0), each run the min over its rounds; ms per')
-print('frame, median over the runs; then 0 / default pair by pair (runs next to each other in')
+print(f'{runs} pairs of runs (Mesa\'s default, then {n}), each run the min over its rounds; ms per')
+print(f'frame, median over the runs; then {n} / default pair by pair (runs next to each other in')
 print('time: the host drifts less within a pair than between pairs), median and range\n')
-print('| asset | figure | Mesa\'s default | 0 (calling thread) | 0 / default (median; range) |')
+print(f'| asset | figure | Mesa\'s default | {label_n} | {n} / default (median; range) |')
 print('| --- | --- | ---: | ---: | ---: |')
 for name, s in rows.items():
     for k, label in keys:
@@ -63,7 +65,7 @@ print('\nEach against the floor of its own setting, median over runs (frame / fl
 print('| asset | rasterizer threads | frame, 1 thread | frame, 2 threads | occluder, 2 threads |')
 print('| --- | --- | ---: | ---: | ---: |')
 for name, s in rows.items():
-    for setting, label in (('default', "Mesa's default"), ('zero', '0 (calling thread)')):
+    for setting, label in (('default', "Mesa's default"), ('zero', label_n)):
         v = s[setting]
         ratio = lambda k: median([a / f for a, f in zip(v[k], v['floor'])])
         print(f"| {name} | {label} | {ratio('frame'):.2f} | {ratio('two'):.2f} | "

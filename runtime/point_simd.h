@@ -3,7 +3,9 @@
 // runtime/point_simd_avx2.cpp (compiled for AVX2 by a target pragma, with -ffp-contract=off
 // and no FMA): size and relevance (its area measure) 8 points per step, each point's data
 // loaded on its own and transposed into lanes (AVX2 gathers measured slower than those loads);
-// place one point per step with its position and normal in the lanes of one vector. Otherwise the
+// place one point per step with its position and normal in the lanes of one vector; where the CPU
+// also has AVX-512 (F, VL, DQ, BW), relevance and size fused run 16 points per step
+// (runtime/point_simd_avx512.cpp). Otherwise the
 // baseline: the scalar code of point_placement.cpp / stipple_size.cpp (SSE2 scalar on x86-64; NEON
 // targets keep it too). Each kernel does the same IEEE operations in the same order as the scalar
 // code (no FMA, no reciprocal approximations, the same NaN behaviour in comparisons and clamps), so
