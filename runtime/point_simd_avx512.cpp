@@ -24,10 +24,11 @@
 #pragma GCC push_options
 #pragma GCC target("avx512f,avx512vl,avx512dq,avx512bw")
 // GCC 12's AVX-512 headers pass _mm512_undefined_ps() (`__m512 __Y = __Y;`) as the unused
-// source of unmasked intrinsics, which -Wmaybe-uninitialized reports once they are inlined
-// (GCC PR 105593, fixed in GCC 13).
+// source of unmasked intrinsics, which -Wmaybe-uninitialized (-O3) and -Wuninitialized (-O2,
+// the sanitizer build) report once they are inlined (GCC PR 105593, fixed in GCC 13).
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 #endif
 
 namespace stipple {
